@@ -1,0 +1,259 @@
+"""Assembly: element kernels -> one COO step -> K, M, f in generalised coordinates.
+
+Spring-like elements (massless ropes over their whole reeving, axial and rotational
+springs) are rows r of elongation coefficients, ``K = R^T diag(c) R`` (Heletiy 2016,
+eq. 5: C_ij = sum_m C_m r_mi r_mj). Tension (geometric) stiffness of spans and the load
+stiffness of rigid bodies come from the static state (`cranefe.statics`) when sway is on.
+Everything is assembled in primitive coordinates and mapped once, ``K_q = T^T K_u T``.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from .dofs import build_dofs
+from .elements import (elongation_rows, load_stiffness, rigid_mass, skew, span_geometry,
+                       string_stiffness)
+from .errors import ModelError
+from .model import GROUND
+
+
+@dataclass(frozen=True)
+class SpringRows:
+    """All spring-like elements: K = R^T diag(c) R (primitive coordinates)."""
+
+    R: sp.csr_matrix          # (ne, n_primitive) elongation rows
+    c: np.ndarray             # (ne,) stiffness of each row
+    psi: np.ndarray           # (ne,) absorption coefficient
+    names: tuple              # (ne,) "rope hoist", "spring tower_bend", ...
+    length: np.ndarray        # (ne,) deformable length (ropes, axial springs), else nan
+
+
+@dataclass(frozen=True)
+class System:
+    """Assembled matrices in generalised coordinates q (u = dofs.T q)."""
+
+    model: object
+    effects: object
+    dofs: object
+    K: sp.csr_matrix          # (n, n) stiffness: elastic + tension + load
+    M: sp.csr_matrix          # (n, n) inertia
+    f: np.ndarray             # (n,) gravity forces
+    K_pattern: sp.csr_matrix  # (n, n) sum of |element matrices| / norm: null(K) finder
+    springs: SpringRows
+    static: object = None     # StaticState when sway is on
+    timings: dict = field(default_factory=dict)
+
+
+def _coo(rows, cols, vals, shape):
+    if not rows:
+        return sp.csr_matrix(shape)
+    return sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=shape).tocsr()
+
+
+def rope_rows(model, layout):
+    """Massless ropes: one elongation row per rope over its whole path (seed eq. 2-3).
+
+    Returns (R (nr, n_primitive), deformable lengths L (nr,)). A drum at an end hauls in
+    ``radius * rotation``: coefficient -radius on the drum's rotation.
+    """
+    rows, cols, vals, lengths = [], [], [], []
+    for k, r in enumerate(model.ropes):
+        e, l = span_geometry(model.coords, r.span_a, r.span_b)
+        c, v = elongation_rows(e, r.falls.astype(float), layout.node(r.span_a),
+                               layout.node(r.span_b))
+        rows.append(np.full(c.size, k))
+        cols.append(c.ravel())
+        vals.append(v.ravel())
+        for d in r.end_drums:
+            rows.append([k])
+            cols.append([layout.drum(d)])
+            vals.append([-model.drums[d].radius])
+        lengths.append(float(r.falls @ l) + r.extra_length)
+    return _coo(rows, cols, vals, (len(model.ropes), layout.size)), np.array(lengths)
+
+
+def spring_rows(model, layout):
+    """Rows of ropes, axial springs and rotational springs, with stiffness and psi."""
+    R_rope, L = rope_rows(model, layout)
+    c = [r.EA / l for r, l in zip(model.ropes, L)]
+    psi = [r.psi for r in model.ropes]
+    names = [f"rope {r.name}" for r in model.ropes]
+    lengths = list(L)
+    rows, cols, vals = [], [], []
+    for k, s in enumerate(model.springs):
+        if s.type == "axial":
+            e, l = span_geometry(model.coords, np.array(s.nodes[:1]), np.array(s.nodes[1:]))
+            cc, v = elongation_rows(e, np.ones(1), layout.node([s.nodes[0]]),
+                                    layout.node([s.nodes[1]]))
+            rows.append(np.full(6, k))
+            cols.append(cc[0])
+            vals.append(v[0])
+            lengths.append(float(l[0]))
+        else:                               # relative rotation about the axis
+            for sign, b in ((-1.0, s.bodies[0]), (1.0, s.bodies[1])):
+                if b != GROUND:
+                    rows.append(np.full(3, k))
+                    cols.append(layout.body(b)[3:])
+                    vals.append(sign * s.axis)
+            lengths.append(np.nan)
+        c.append(s.stiffness)
+        psi.append(s.psi)
+        names.append(f"spring {s.name}")
+    R_spring = _coo(rows, cols, vals, (len(model.springs), layout.size))
+    return SpringRows(sp.vstack([R_rope, R_spring]).tocsr(), np.array(c, dtype=float),
+                      np.array(psi, dtype=float), tuple(names), np.array(lengths))
+
+
+def mass_and_gravity(model, dofs):
+    """Primitive inertia matrix, gravity forces, and the weights bodies carry.
+
+    Returns (M (n_u, n_u), f (n_u,), gravity_points): gravity_points lists
+    (body, point, force) for each weight on a body (its own, point masses on its nodes,
+    rigid members) at its point of application, for the load stiffness.
+    """
+    layout = dofs.layout
+    g6 = np.concatenate([model.gravity, np.zeros(3)])
+    rows, cols, vals = [], [], []
+
+    def block(idx, m):
+        rows.append(np.repeat(idx, len(idx)))
+        cols.append(np.tile(idx, len(idx)))
+        vals.append(np.asarray(m).ravel())
+
+    f = np.zeros(layout.size)
+    points = [(b, body.com, body.mass * model.gravity) for b, body in enumerate(model.bodies)
+              if body.mass > 0]
+    body_blocks = [rigid_mass(np.array([b.mass]), b.inertia[None])[0] for b in model.bodies]
+    first_body = {}
+    for b, g in enumerate(dofs.group_of_body):
+        first_body.setdefault(g, b)
+
+    def add_to_body(b, m, c, inertia):
+        """A mass m with rotary inertia at offset c from body b's centre of mass."""
+        points.append((b, model.bodies[b].com + c, m * model.gravity))
+        C = skew(c)
+        blk = np.zeros((6, 6))
+        blk[:3, :3] = m * np.eye(3)
+        blk[:3, 3:] = -m * C
+        blk[3:, :3] = m * C
+        blk[3:, 3:] = -m * C @ C + inertia
+        body_blocks[b] = body_blocks[b] + blk
+
+    pm = model.masses
+    for i, m, J in zip(pm.nodes, pm.mass, pm.inertia):
+        car = dofs.carrier[i]
+        if car >= 0:        # on a body: exact rigid contribution (parallel axes included)
+            b = first_body[car]
+            add_to_body(b, m, model.coords[i] - model.bodies[b].com, J)
+        else:
+            block(layout.node([i])[0], m * np.eye(3))
+            f[layout.node([i])[0]] += m * model.gravity
+
+    for mem in model.members:
+        a, b = np.array(mem.nodes[:-1]), np.array(mem.nodes[1:])
+        e, l = span_geometry(model.coords, a, b)
+        cars = {int(dofs.carrier[i]) for i in mem.nodes}
+        if len(cars) != 1 or -2 in cars:
+            raise ModelError("with structure: rigid a member's nodes must all be carried by "
+                             "one body or the ground (found nodes on "
+                             f"{len(cars)} different carriers); put them on one body or "
+                             "use effects: {structure: flexible}", model.file,
+                             f"members.{mem.name}")
+        car = cars.pop()
+        if car == GROUND:
+            continue
+        bi = first_body[car]
+        for ek, lk, ak, bk in zip(e, l, a, b):
+            me = mem.rho * mem.A * lk
+            mid = 0.5 * (model.coords[ak] + model.coords[bk])
+            add_to_body(bi, me, mid - model.bodies[bi].com,
+                        me * lk**2 / 12 * (np.eye(3) - np.outer(ek, ek)))
+
+    for b, blk in enumerate(body_blocks):
+        idx = layout.body(b)
+        block(idx, blk)
+        f[idx] += blk @ g6
+
+    for d, drum in enumerate(model.drums):
+        block([layout.drum(d)], [[drum.reduced_inertia]])
+
+    for ld in model.linear_drives:      # rotor turns i/R rad per metre of stroke (eq. 14)
+        a, c = ld.nodes
+        e, _ = span_geometry(model.coords, np.array([a]), np.array([c]))
+        cc, v = elongation_rows(e, np.ones(1), layout.node([a]), layout.node([c]))
+        jm = ld.rotor_inertia * (ld.gear_ratio / ld.pinion_radius) ** 2
+        block(cc[0], jm * np.outer(v[0], v[0]))
+    M = _coo(rows, cols, vals, (layout.size, layout.size))
+    return M, f, tuple(points)
+
+
+def geometric_stiffness(model, dofs, static):
+    """Tension stiffness of spans and load stiffness of rigid groups (primitive)."""
+    layout = dofs.layout
+    rows, cols, vals = [], [], []
+
+    def add(idx, blocks):
+        k = idx.shape[1]
+        rows.append(np.repeat(idx, k, axis=1).ravel())
+        cols.append(np.tile(idx, (1, k)).ravel())
+        vals.append(blocks.ravel())
+
+    for a, b, falls, N in static.spans():
+        e, l = span_geometry(model.coords, a, b)
+        idx = np.hstack([layout.node(a), layout.node(b)])
+        add(idx, string_stiffness(N, falls, e, l))
+
+    first_body = {}
+    for b, g in enumerate(dofs.group_of_body):
+        first_body.setdefault(g, b)
+    for g, point, F in static.point_forces(dofs):
+        H = load_stiffness(F, point - dofs.group_ref[g]).sum(axis=0)
+        add(layout.body(first_body[g])[None, 3:], H[None])
+    return _coo(rows, cols, vals, (layout.size, layout.size))
+
+
+def _pattern(springs, Kg, T):
+    """sum of element matrices each scaled to unit size, |.| for indefinite blocks."""
+    R = springs.R
+    norms = np.sqrt(np.asarray(R.multiply(R).sum(axis=1)).ravel())
+    Rn = sp.diags(1 / np.where(norms > 0, norms, 1)) @ R
+    P = Rn.T @ Rn
+    if Kg is not None and Kg.nnz:
+        A = abs(Kg)
+        P = P + A / abs(A).max()
+    return (T.T @ P @ T).tocsr()
+
+
+def assemble(model, effects=None):
+    """Assemble K, M, f for `model` with `effects` (default: the model's own)."""
+    import time
+    t0 = time.perf_counter()
+    effects = effects or model.effects
+    if effects.rope_mass > 0 and any(r.mass_per_length > 0 for r in model.ropes):
+        raise ModelError("rope_mass > 0 (finite-element ropes) is not available in this "
+                         "version; set effects: {rope_mass: 0}", model.file,
+                         "effects.rope_mass")
+    if effects.structure == "flexible" and model.members:
+        raise ModelError("structure: flexible (members as finite elements) is not "
+                         "available in this version; set effects: {structure: rigid}",
+                         model.file, "effects.structure")
+    dofs = build_dofs(model, effects)
+    springs = spring_rows(model, dofs.layout)
+    K_u = springs.R.T @ sp.diags(springs.c) @ springs.R
+    M_u, f_u, _ = mass_and_gravity(model, dofs)
+    static, Kg = None, None
+    if effects.sway:
+        from .statics import solve_static
+        static = solve_static(model)
+        Kg = geometric_stiffness(model, dofs, static)
+        K_u = K_u + Kg
+    T = dofs.T
+    K = (T.T @ K_u @ T).tocsr()
+    K = ((K + K.T) * 0.5).tocsr()
+    M = (T.T @ M_u @ T).tocsr()
+    M = ((M + M.T) * 0.5).tocsr()
+    return System(model, effects, dofs, K, M, T.T @ f_u, _pattern(springs, Kg, T), springs,
+                  static, {"assemble": time.perf_counter() - t0})

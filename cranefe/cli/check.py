@@ -1,0 +1,76 @@
+"""Check a model or scene: coordinates, effects, ropes (length, stiffness, static tension),
+quasi-cyclic coordinates and warnings, without solving for modes."""
+
+import numpy as np
+
+HELP = "check a model: DOFs, ropes, static tensions, quasi-cyclic coordinates"
+
+
+def add_arguments(p):
+    p.add_argument("file", help="model or scene file (YAML)")
+    p.add_argument("--json", action="store_true", help="print one JSON document")
+
+
+def run(args):
+    from dataclasses import replace
+
+    from ..assemble import assemble
+    from ..condense import DENSE_MAX, condense
+    from ..model import load
+    from ..report import dumps
+    from ..statics import solve_static
+    model = load(args.file)
+    system = assemble(model)
+    static = system.static or solve_static(model)
+    sp = system.springs
+    warnings = []
+    elements = []
+    for k, name in enumerate(sp.names):
+        force = float(static.element_force[k])
+        e = {"name": name, "stiffness": float(sp.c[k]), "psi": float(sp.psi[k]),
+             "static_force": force}
+        if k < len(model.ropes):
+            r = model.ropes[k]
+            e.update(length_m=float(sp.length[k]), path=list(r.points),
+                     falls=int(r.falls.sum()))
+            if force <= 0:
+                warnings.append(f"{name} is slack in the static state ({force:.4g} N)")
+        elements.append(e)
+    qc, massless = [], []
+    if system.K.shape[0] <= DENSE_MAX:
+        c = condense(system)
+        qc, massless = list(c.quasi_cyclic), list(c.massless)
+    for i, m in zip(model.masses.nodes, model.masses.inertia):
+        if system.dofs.carrier[i] == -2 and np.any(m):
+            warnings.append(f"rotary inertia of the point mass at free node "
+                            f"'{model.node_names[i]}' is ignored (no rotation there)")
+    doc = {"model": model.name, "file": model.file, "scene": model.scene,
+           "planar": model.planar, "effects": system.effects.as_dict(),
+           "dofs": system.K.shape[0], "coordinates": list(system.dofs.labels),
+           "quasi_cyclic": qc, "massless_condensed": massless,
+           "constraints": [c.name for c in system.dofs.constraints],
+           "elements": elements, "warnings": warnings}
+    if args.json:
+        print(dumps(doc))
+        return 0
+    eff = ", ".join(f"{k}={v}" for k, v in doc["effects"].items())
+    print(f"{model.name} ({'planar x-z' if model.planar else '3D'}): {doc['dofs']} "
+          f"coordinates; effects: {eff}")
+    print(f"  coordinates: {', '.join(doc['coordinates'])}")
+    if qc:
+        print(f"  quasi-cyclic: {', '.join(qc)}")
+    if massless:
+        print(f"  massless, condensed statically: {', '.join(massless)}")
+    if doc["constraints"]:
+        print(f"  constraints: {', '.join(doc['constraints'])}")
+    print(f"  {'element':<28} {'length [m]':>11} {'stiffness':>12} {'static force':>13}")
+    for e in elements:
+        length = f"{e['length_m']:.4g}" if "length_m" in e else "-"
+        unit = "N m/rad" if e["name"].startswith("spring") and "length_m" not in e else "N/m"
+        print(f"  {e['name']:<28} {length:>11} {e['stiffness']:>12.4g} "
+              f"{e['static_force']:>13.5g}  ({unit})")
+        if "path" in e:
+            print(f"    path: {' - '.join(e['path'])} ({e["falls"]} rope parts)")
+    for w in warnings:
+        print(f"  warning: {w}")
+    return 0

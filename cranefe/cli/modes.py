@@ -1,0 +1,28 @@
+"""Natural frequencies and mode shapes of a model or scene."""
+
+import sys
+
+HELP = "natural frequencies and modes"
+
+
+def add_arguments(p):
+    p.add_argument("file", help="model or scene file (YAML)")
+    p.add_argument("--count", type=int, default=None, help="number of modes (default: all "
+                   "for small models, 10 for large ones, or the scene's count)")
+    p.add_argument("--json", action="store_true", help="print one JSON document")
+    p.add_argument("--solver", choices=("auto", "dense", "sparse"), default="auto")
+
+
+def run(args):
+    from ..model import load
+    from ..modal import drive_reduction, modes
+    from ..report import dumps, modes_document, modes_table
+    model = load(args.file)
+    count = args.count or model.analysis.get("count")
+    result = modes(model, count=count, solver=args.solver)
+    comparison = drive_reduction(model, result) if model.effects.drive == "reduced" else None
+    if args.json:
+        print(dumps(modes_document(result, comparison)))
+    else:
+        print(modes_table(result, comparison))
+    return 0

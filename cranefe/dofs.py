@@ -1,0 +1,388 @@
+"""Degrees of freedom for the effects that are on, and the one constraint transform.
+
+Two spaces (docs/theory.md, "Coordinates"):
+
+- *primitive* coordinates u, always 3D: three translations per node, six per body
+  (translation of its centre of mass and rotation vector), one rotation per drum;
+  element kernels are written in them;
+- *generalised* coordinates q: what actually moves. Bodies joined by fixed joints move as
+  one rigid group (6 coordinates, 3 in a plane: ux, uz, ry); a node is carried by its
+  body, fixed (ground), or has its own translations (only those its elastic elements
+  resist when sway is off); a drum turns only when coupled and unbraked.
+
+``u = T q`` with ``T = T_map @ T_c``: T_map is the rigid/planar kinematics, T_c the
+master-slave elimination of joint, linear-drive and inextensible-rope constraints
+``G q_map = 0`` (QR with column pivoting, so redundant constraints of closed loops are
+handled).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+
+from .elements import elongation_rows, skew, span_geometry
+from .errors import ModelError
+from .model import GROUND
+
+PLANAR_COMPONENTS = (0, 2, 4)       # ux, uz, ry of (ux, uy, uz, rx, ry, rz)
+AXES = ("x", "y", "z")
+COMP_NAMES = ("ux", "uy", "uz", "rx", "ry", "rz")
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Primitive coordinate offsets."""
+
+    n_nodes: int
+    n_bodies: int
+    n_drums: int
+
+    @property
+    def body0(self):
+        return 3 * self.n_nodes
+
+    @property
+    def drum0(self):
+        return 3 * self.n_nodes + 6 * self.n_bodies
+
+    @property
+    def size(self):
+        return self.drum0 + self.n_drums
+
+    def node(self, i):
+        """(k, 3) translation indices of nodes i."""
+        return 3 * np.asarray(i)[..., None] + np.arange(3)
+
+    def body(self, b):
+        return self.body0 + 6 * np.asarray(b)[..., None] + np.arange(6)
+
+    def drum(self, d):
+        return self.drum0 + np.asarray(d)
+
+
+@dataclass(frozen=True)
+class DofMap:
+    """Generalised coordinates and the transform from them to primitive ones."""
+
+    layout: Layout
+    T: sp.csr_matrix          # (n_primitive, n): u = T q
+    T_map: sp.csr_matrix      # (n_primitive, n_map): kinematics before constraints
+    T_c: sp.csr_matrix        # (n_map, n): constraint elimination
+    labels: tuple             # (n,) names of the generalised coordinates
+    kinds: tuple              # (n,) 'body' | 'node' | 'drum'
+    group_of_body: np.ndarray  # (nb,) rigid group index or GROUND
+    group_ref: np.ndarray     # (ng, 3) reference point of each group
+    group_q: np.ndarray       # (ng, 6) q_map index of each of the 6 components, -1 absent
+    carrier: np.ndarray       # (nn,) group carrying each node, GROUND, or -2 = own DOFs
+    constraints: tuple        # ConstraintRows used in T_c
+
+    @property
+    def n(self):
+        return self.T.shape[1]
+
+
+@dataclass(frozen=True)
+class ConstraintRows:
+    """Rows of G (in q_map) of one constraint, with how its reaction acts on points."""
+
+    name: str
+    owner: tuple              # ("joint" | "drive" | "rope", index in the model)
+    rows: np.ndarray          # (k, n_map) dense
+    groups: tuple             # (g1, g2) rigid groups a joint connects, else ()
+    point: np.ndarray         # (3,) point where the reaction acts (joints), or None
+    directions: np.ndarray    # (k, 3) force direction of each row at the point (joint
+                              # translations) or zeros (rotations, ropes, drives)
+
+
+def _groups(model):
+    """Union-find of bodies over fixed joints; a group fixed to ground is GROUND."""
+    nb = len(model.bodies)
+    parent = list(range(nb + 1))     # index nb stands for ground
+
+    def find(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    for k, j in enumerate(model.joints):
+        if j.type == "fixed":
+            a, b = (nb if x == GROUND else x for x in j.bodies)
+            ra, rb = find(a), find(b)
+            if ra != rb:
+                parent[max(ra, rb)] = min(ra, rb) if nb not in (ra, rb) else nb
+    roots, group_of_body = {}, np.empty(nb, dtype=int)
+    for b in range(nb):
+        r = find(b)
+        group_of_body[b] = GROUND if r == nb else roots.setdefault(r, len(roots))
+    return group_of_body, len(roots)
+
+
+def elastic_directions(model, effects):
+    """Per node, the directions (k, 3) its ropes, springs, drives and members act in."""
+    dirs = {}
+    coords = model.coords
+
+    def add(a, b):
+        e, _ = span_geometry(coords, np.atleast_1d(a), np.atleast_1d(b))
+        for i, j, v in zip(np.atleast_1d(a), np.atleast_1d(b), e):
+            dirs.setdefault(int(i), []).append(v)
+            dirs.setdefault(int(j), []).append(v)
+
+    for r in model.ropes:
+        add(r.span_a, r.span_b)
+    for s in model.springs:
+        if s.type == "axial":
+            add(*s.nodes)
+    for d in model.linear_drives:
+        add(*d.nodes)
+    for m in model.members:
+        for a, b in zip(m.nodes[:-1], m.nodes[1:]):
+            if effects.structure == "flexible" or m.type == "truss":
+                add(a, b)
+            if effects.structure == "flexible" and m.type == "beam":
+                dirs.setdefault(a, []).extend(np.eye(3))
+                dirs.setdefault(b, []).extend(np.eye(3))
+    return {i: np.array(v) for i, v in dirs.items()}
+
+
+def _basis(vectors, planar, tol=1e-9):
+    """Orthonormal basis (3, k) of the span of row vectors (restricted to x-z if planar)."""
+    if planar:
+        vectors = vectors[:, [0, 2]]
+    _, s, vt = np.linalg.svd(vectors, full_matrices=False)
+    vt = vt[s > tol * s[0]]
+    if planar:
+        out = np.zeros((3, len(vt)))
+        out[[0, 2]] = vt.T
+        return out
+    return vt.T
+
+
+def build_dofs(model, effects=None):
+    """The generalised coordinates of `model` for `effects` (default: the model's)."""
+    effects = effects or model.effects
+    planar = model.planar
+    nn, nb, nd = len(model.node_names), len(model.bodies), len(model.drums)
+    layout = Layout(nn, nb, nd)
+    comps = PLANAR_COMPONENTS if planar else tuple(range(6))
+    group_of_body, ng = _groups(model)
+
+    labels, kinds = [], []
+    group_q = -np.ones((ng, 6), dtype=int)
+    group_names = [[] for _ in range(ng)]
+    for b, g in enumerate(group_of_body):
+        if g != GROUND:
+            group_names[g].append(model.bodies[b].name)
+    for g in range(ng):
+        for c in comps:
+            group_q[g, c] = len(labels)
+            labels.append(f"body {'+'.join(group_names[g])} {COMP_NAMES[c]}")
+            kinds.append("body")
+
+    # reference point of each group: its centre of mass, or the centroid of its nodes
+    group_ref = np.zeros((ng, 3))
+    gmass = np.zeros(ng)
+    gnodes = [[] for _ in range(ng)]
+    for b, body in enumerate(model.bodies):
+        g = group_of_body[b]
+        if g != GROUND:
+            group_ref[g] += body.mass * body.com
+            gmass[g] += body.mass
+            gnodes[g] += [model.coords[list(body.nodes)]] if body.nodes else [body.com[None]]
+    for g in range(ng):
+        group_ref[g] = group_ref[g] / gmass[g] if gmass[g] > 0 \
+            else np.vstack(gnodes[g]).mean(axis=0)
+
+    # carrier of every node
+    carrier = np.full(nn, -2, dtype=int)
+    carrier[model.ground] = GROUND
+    for b, body in enumerate(model.bodies):
+        for i in body.nodes:
+            if carrier[i] == -2 or group_of_body[b] == GROUND:
+                carrier[i] = group_of_body[b]
+    for j in model.joints:                # a joint's node moves with its first body
+        if carrier[j.at] == -2:
+            b1 = j.bodies[0]
+            carrier[j.at] = GROUND if b1 == GROUND else group_of_body[b1]
+
+    rows, cols, vals = [], [], []
+
+    def rigid(prim_rows, g, offsets):
+        """Rows of points (k offsets from the group's reference) carried by group g."""
+        if g == GROUND:
+            return
+        # u_point = u_ref + t x c = u_ref - skew(c) t
+        k = len(offsets)
+        block = np.zeros((k, 3, 6))
+        block[:, :, :3] = np.eye(3)
+        block[:, :, 3:] = -skew(offsets)
+        for c in comps:
+            q = group_q[g, c]
+            nz = block[:, :, c] != 0
+            rows.append(prim_rows[nz])
+            cols.append(np.full(nz.sum(), q))
+            vals.append(block[:, :, c][nz])
+
+    carried = np.flatnonzero(carrier >= 0)
+    for g in range(ng):
+        sel = carried[carrier[carried] == g]
+        rigid(layout.node(sel), g, model.coords[sel] - group_ref[g])
+    for b, body in enumerate(model.bodies):
+        g = group_of_body[b]
+        if g == GROUND:
+            continue
+        rigid(layout.body(b)[None, :3], g, (body.com - group_ref[g])[None])
+        for c in (3, 4, 5):                 # rotations are shared by the whole group
+            if group_q[g, c] >= 0:
+                rows.append([layout.body(b)[c]])
+                cols.append([group_q[g, c]])
+                vals.append([1.0])
+
+    # free nodes: only those something acts on get coordinates
+    dirs = elastic_directions(model, effects)
+    active = set(dirs) | set(model.masses.nodes.tolist()) | {d.node for d in model.drums}
+    for i in np.flatnonzero(carrier == -2):
+        if i not in active:
+            continue
+        if effects.sway:
+            basis = _basis(np.eye(3), planar)
+        elif i in dirs:
+            basis = _basis(dirs[i], planar)
+        else:
+            continue
+        for k in range(basis.shape[1]):
+            v = basis[:, k]
+            nz = np.flatnonzero(np.abs(v) > 1e-15)
+            rows.append(layout.node(i)[nz])
+            cols.append(np.full(len(nz), len(labels)))
+            vals.append(v[nz])
+            axis = np.flatnonzero(np.abs(np.abs(v) - 1) < 1e-12)
+            name = AXES[axis[0]] if len(axis) else f"d{k + 1}"
+            labels.append(f"node {model.node_names[i]} {name}")
+            kinds.append("node")
+
+    for d, drum in enumerate(model.drums):
+        if effects.drive == "coupled" and not drum.brake:
+            rows.append([layout.drum(d)])
+            cols.append([len(labels)])
+            vals.append([1.0])
+            labels.append(f"drum {drum.name}")
+            kinds.append("drum")
+
+    n_map = len(labels)
+    T_map = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                          shape=(layout.size, n_map)).tocsr() if rows else \
+        sp.csr_matrix((layout.size, 0))
+
+    constraints = _constraint_rows(model, effects, layout, T_map, group_of_body, group_q,
+                                   group_ref, comps)
+    T_c, keep = _eliminate(constraints, n_map, labels, model)
+    return DofMap(layout, (T_map @ T_c).tocsr(), T_map, T_c,
+                  tuple(labels[i] for i in keep), tuple(kinds[i] for i in keep),
+                  group_of_body, group_ref, group_q, carrier, tuple(constraints))
+
+
+def _constraint_rows(model, effects, layout, T_map, group_of_body, group_q, group_ref,
+                     comps):
+    out = []
+    n_map = T_map.shape[1]
+
+    def point_rows(g, p):
+        """(3, n_map): translation of point p carried by group g."""
+        m = np.zeros((3, n_map))
+        if g == GROUND:
+            return m
+        c = p - group_ref[g]
+        block = np.hstack([np.eye(3), -skew(c)])
+        for k in comps:
+            m[:, group_q[g, k]] += block[:, k]
+        return m
+
+    def rot_rows(g):
+        m = np.zeros((3, n_map))
+        if g != GROUND:
+            for k in (3, 4, 5):
+                if group_q[g, k] >= 0:
+                    m[k - 3, group_q[g, k]] = 1.0
+        return m
+
+    for k, j in enumerate(model.joints):
+        if j.type == "fixed":
+            continue
+        g1, g2 = (GROUND if b == GROUND else group_of_body[b] for b in j.bodies)
+        if g1 == g2:
+            continue                      # both in one rigid group: nothing to constrain
+        p = model.coords[j.at]
+        trans = point_rows(g1, p) - point_rows(g2, p)
+        rot = rot_rows(g1) - rot_rows(g2)
+        if j.type == "slider":
+            tdirs = _perp(j.axis)
+            rdirs = np.eye(3)
+        else:
+            tdirs = np.eye(3)
+            rdirs = _perp(j.axis) if j.type == "hinge" else np.zeros((0, 3))
+        rows = np.vstack([tdirs @ trans, rdirs @ rot])
+        dirs = np.vstack([tdirs, np.zeros((len(rdirs), 3))])
+        out.append(ConstraintRows(f"{j.type} joint at {model.node_names[j.at]}",
+                                  ("joint", k), rows, (g1, g2), p, dirs))
+
+    for k, d in enumerate(model.linear_drives):
+        a, c = d.nodes
+        e, _ = span_geometry(model.coords, np.array([a]), np.array([c]))
+        cols, vals = elongation_rows(e, np.ones(1), layout.node([a]), layout.node([c]))
+        row = np.zeros(layout.size)
+        np.add.at(row, cols[0], vals[0])
+        out.append(ConstraintRows(f"linear drive {d.name}", ("drive", k),
+                                  (row @ T_map)[None], (), None, np.zeros((1, 3))))
+    if not effects.rope_elasticity:
+        from .assemble import rope_rows
+        R, _ = rope_rows(model, layout)
+        RT = (R @ T_map).toarray()
+        for k, r in enumerate(model.ropes):
+            out.append(ConstraintRows(f"rope {r.name} (inextensible)", ("rope", k),
+                                      RT[k:k + 1], (), None, np.zeros((1, 3))))
+    return out
+
+
+def _perp(axis):
+    """(2, 3) orthonormal directions perpendicular to a unit axis."""
+    _, _, vt = np.linalg.svd(axis[None])
+    return vt[1:]
+
+
+def _eliminate(constraints, n_map, labels, model):
+    """Master-slave elimination of G q_map = 0 -> (T_c (n_map, n), kept master indices)."""
+    if not constraints:
+        return sp.identity(n_map, format="csr"), np.arange(n_map)
+    G = np.vstack([c.rows for c in constraints])
+    involved = np.flatnonzero(np.abs(G).sum(axis=0) > 0)
+    if len(involved) == 0:
+        return sp.identity(n_map, format="csr"), np.arange(n_map)
+    GJ = G[:, involved]
+    # scale rotation columns by the model size so pivoting compares like with like
+    scale = np.array([model.length_scale if lab.split()[-1].startswith("r") else 1.0
+                      for lab in np.array(labels)[involved]])
+    Q, R, piv = sla.qr(GJ * scale, pivoting=True, mode="economic")
+    diag = np.abs(np.diag(R))
+    rank = int(np.sum(diag > 1e-10 * diag[0])) if len(diag) else 0
+    slaves, masters = piv[:rank], piv[rank:]
+    # R11 (x_s / scale_s) + R12 (x_m / scale_m) = 0
+    W = -sla.solve_triangular(R[:rank, :rank], R[:rank, rank:])
+    W = W / scale[slaves][:, None] * scale[masters][None, :]
+    slave_global = involved[slaves]
+    keep = np.setdiff1d(np.arange(n_map), slave_global)
+    col_of = {q: k for k, q in enumerate(keep)}
+    rows = list(keep)
+    cols = list(range(len(keep)))
+    vals = [1.0] * len(keep)
+    for si, s in enumerate(slave_global):
+        for mi, m in enumerate(involved[masters]):
+            if W[si, mi] != 0:
+                rows.append(s)
+                cols.append(col_of[m])
+                vals.append(W[si, mi])
+    T_c = sp.coo_matrix((vals, (rows, cols)), shape=(n_map, len(keep))).tocsr()
+    return T_c, keep

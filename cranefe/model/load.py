@@ -1,0 +1,589 @@
+"""Build a checked `Model` from a model or scene file (model-format.md, format 1).
+
+Every user-facing check lives here; nothing downstream re-validates input. Each error
+names the file, the entry (``ropes.hoist.path[2]``) and what to change.
+"""
+
+import math
+import os
+
+import numpy as np
+
+from ..errors import ModelError
+from .model import (EFFECT_CHOICES, GROUND, Body, Drum, Effects, Joint, LinearDrive,
+                    Member, Model, PointMasses, Rope, Spring)
+from .yamlio import read_yaml
+
+MODEL_KEYS = {"cranefe", "name", "plane", "gravity", "nodes", "ground", "masses",
+              "bodies", "joints", "springs", "drums", "ropes", "members",
+              "linear_drives", "effects"}
+SCENE_KEYS = {"cranefe", "scene", "model", "effects", "analysis"}
+JOINT_TYPES = ("fixed", "hinge", "ball", "slider")
+ANALYSIS_TYPES = ("modes", "damping", "transient", "luffing")
+
+
+def load(path, text=None):
+    """Load a model file or a scene file (which names a model) into a `Model`."""
+    file = str(path)
+    data, text = read_yaml(path, text)
+    r = _Reader(file)
+    if not isinstance(data, dict):
+        raise ModelError("a model file is a mapping that starts with 'cranefe: 1'", file)
+    if "scene" in data or "model" in data:
+        return _load_scene(data, file, r)
+    return _build_model(data, file, text, r)
+
+
+def _load_scene(data, file, r):
+    r.keys(data, "", SCENE_KEYS, required=("cranefe", "model"))
+    r.version(data)
+    model_path = data["model"]
+    if not isinstance(model_path, str):
+        raise ModelError("must be the path of a model file, relative to the scene file",
+                         file, "model")
+    full = os.path.join(os.path.dirname(os.path.abspath(file)), model_path)
+    if not os.path.isfile(full):
+        raise ModelError(f"model file '{model_path}' not found (looked for {full}); "
+                         "the path is relative to the scene file", file, "model")
+    model = load(full)
+    effects = _effects(data.get("effects"), model.effects, r, "effects")
+    analysis = _analysis(data.get("analysis", {}), r)
+    scene = data.get("scene")
+    return _replace(model, effects=effects, analysis=analysis,
+                    scene=str(scene) if scene is not None else os.path.basename(file))
+
+
+def _replace(model, **kw):
+    from dataclasses import replace
+    return replace(model, **kw)
+
+
+def _analysis(a, r):
+    if not isinstance(a, dict):
+        raise ModelError("must be a mapping such as {type: modes, count: 10}", r.file,
+                         "analysis")
+    kind = a.get("type", "modes")
+    if kind not in ANALYSIS_TYPES:
+        raise ModelError(f"unknown analysis type {kind!r}; use one of "
+                         f"{', '.join(ANALYSIS_TYPES)}", r.file, "analysis.type")
+    out = dict(a, type=kind)
+    if kind in ("modes", "damping"):
+        r.keys(a, "analysis", {"type", "count", "method"})
+        if "count" in a:
+            out["count"] = r.integer(a["count"], "analysis.count", minimum=1)
+    return out
+
+
+def _effects(raw, base, r, entry):
+    if raw is None:
+        return base
+    if not isinstance(raw, dict):
+        raise ModelError("must be a mapping such as {sway: false}", r.file, entry)
+    r.keys(raw, entry, set(Effects.__dataclass_fields__))
+    values = base.as_dict()
+    for key, value in raw.items():
+        e = f"{entry}.{key}"
+        if key in ("rope_elasticity", "sway"):
+            values[key] = r.boolean(value, e)
+        elif key == "rope_mass":
+            values[key] = r.integer(value, e, minimum=0)
+        else:
+            if value not in EFFECT_CHOICES[key]:
+                raise ModelError(f"{value!r} is not one of {', '.join(EFFECT_CHOICES[key])}",
+                                 r.file, e)
+            values[key] = value
+    return Effects(**values)
+
+
+class _Reader:
+    """Typed access to raw YAML values with messages that name the entry."""
+
+    def __init__(self, file):
+        self.file = file
+
+    def fail(self, entry, message):
+        raise ModelError(message, self.file, entry or None)
+
+    def version(self, data):
+        if data.get("cranefe") != 1:
+            self.fail("cranefe", f"format version must be 1 (found {data.get('cranefe')!r}); "
+                      "start the file with 'cranefe: 1'")
+
+    def keys(self, d, entry, allowed, required=()):
+        if not isinstance(d, dict):
+            self.fail(entry, f"must be a mapping, not {_kind(d)}")
+        for k in d:
+            if k not in allowed:
+                self.fail(f"{entry}.{k}" if entry else str(k),
+                          f"unknown key {k!r}; allowed here: {', '.join(sorted(allowed))}")
+        for k in required:
+            if k not in d:
+                self.fail(entry, f"missing required key '{k}'")
+
+    def number(self, v, entry, positive=False, nonneg=False):
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            self.fail(entry, f"must be a number, not {_kind(v)} {v!r}")
+        v = float(v)
+        if not math.isfinite(v):
+            self.fail(entry, f"must be finite, not {v}")
+        if positive and v <= 0:
+            self.fail(entry, f"must be positive (found {v:g})")
+        if nonneg and v < 0:
+            self.fail(entry, f"must not be negative (found {v:g})")
+        return v
+
+    def integer(self, v, entry, minimum=None):
+        if isinstance(v, bool) or not isinstance(v, int):
+            if isinstance(v, float) and v.is_integer():
+                v = int(v)
+            else:
+                self.fail(entry, f"must be a whole number, not {_kind(v)} {v!r}")
+        if minimum is not None and v < minimum:
+            self.fail(entry, f"must be at least {minimum} (found {v})")
+        return v
+
+    def boolean(self, v, entry):
+        if not isinstance(v, bool):
+            self.fail(entry, f"must be true or false, not {v!r}")
+        return v
+
+    def vector(self, v, entry, n=3):
+        if not isinstance(v, (list, tuple)) or len(v) != n:
+            self.fail(entry, f"must be a list of {n} numbers, not {v!r}")
+        return np.array([self.number(x, f"{entry}[{i}]") for i, x in enumerate(v)])
+
+    def unit(self, v, entry):
+        a = self.vector(v, entry)
+        n = np.linalg.norm(a)
+        if n == 0:
+            self.fail(entry, "axis must not be the zero vector")
+        return a / n
+
+    def name(self, v, entry):
+        if not isinstance(v, str) or not v:
+            self.fail(entry, f"must be a name (text), not {_kind(v)} {v!r}")
+        return v
+
+    def listing(self, v, entry, min_len=0):
+        if not isinstance(v, list):
+            self.fail(entry, f"must be a list, not {_kind(v)}")
+        if len(v) < min_len:
+            self.fail(entry, f"must list at least {min_len} entries")
+        return v
+
+    def mapping(self, v, entry):
+        if v is None:
+            return {}
+        if not isinstance(v, dict):
+            self.fail(entry, f"must be a mapping of names to entries, not {_kind(v)}")
+        for k in v:
+            if not isinstance(k, str):
+                self.fail(entry, f"names must be text, not {_kind(k)} {k!r}")
+        return v
+
+
+def _kind(v):
+    return {dict: "a mapping", list: "a list", str: "text", bool: "a boolean",
+            type(None): "nothing (null)"}.get(type(v), type(v).__name__)
+
+
+class _Names:
+    """One namespace per kind, with 'used as the wrong kind' messages."""
+
+    def __init__(self, r):
+        self.r = r
+        self.kinds = {}       # name -> kind -> index
+
+    def add(self, kind, name, index):
+        self.kinds.setdefault(name, {})[kind] = index
+
+    def get(self, name, kinds, entry):
+        kinds = (kinds,) if isinstance(kinds, str) else kinds
+        if not isinstance(name, str):
+            self.r.fail(entry, f"must name a {' or '.join(kinds)}, not {_kind(name)} {name!r}")
+        found = self.kinds.get(name, {})
+        for k in kinds:
+            if k in found:
+                return k, found[k]
+        if found:
+            other = ", ".join(found)
+            self.r.fail(entry, f"'{name}' is a {other}, not a {' or '.join(kinds)}")
+        known = sorted(n for n, ks in self.kinds.items() if set(ks) & set(kinds))
+        hint = f"; known: {', '.join(known[:12])}{' ...' if len(known) > 12 else ''}" \
+            if known else ""
+        self.r.fail(entry, f"unknown {' or '.join(kinds)} '{name}'{hint}")
+
+
+def _build_model(data, file, text, r):
+    r.keys(data, "", MODEL_KEYS, required=("cranefe", "nodes"))
+    r.version(data)
+    plane = data.get("plane")
+    if plane not in (None, "xz"):
+        r.fail("plane", f"only 'xz' is supported (found {plane!r}); omit it for a 3D model")
+    planar = plane == "xz"
+    gravity = r.vector(data["gravity"], "gravity") if "gravity" in data \
+        else np.array([0.0, 0.0, -9.81])
+    if planar and gravity[1] != 0:
+        r.fail("gravity", "a plane: xz model needs gravity with y = 0")
+    names = _Names(r)
+
+    # nodes
+    nodes = r.mapping(data["nodes"], "nodes")
+    if not nodes:
+        r.fail("nodes", "a model needs at least one node")
+    node_names = tuple(nodes)
+    coords = np.array([r.vector(nodes[n], f"nodes.{n}") for n in node_names])
+    for i, n in enumerate(node_names):
+        names.add("node", n, i)
+        if planar and coords[i, 1] != 0:
+            r.fail(f"nodes.{n}", f"y = {coords[i, 1]:g} is off the plane of a plane: xz "
+                   "model; set y to 0 or remove 'plane: xz'")
+    scale = float(np.ptp(coords, axis=0).max()) or 1.0
+
+    def node(v, entry):
+        return names.get(v, "node", entry)[1]
+
+    ground = []
+    for i, n in enumerate(r.listing(data.get("ground", []) or [], "ground")):
+        g = node(n, f"ground[{i}]")
+        if g in ground:
+            r.fail(f"ground[{i}]", f"node '{n}' is listed twice")
+        ground.append(g)
+
+    # point masses
+    pm_nodes, pm_mass, pm_inertia = [], [], []
+    for n, v in r.mapping(data.get("masses"), "masses").items():
+        e = f"masses.{n}"
+        i = node(n, e)
+        if isinstance(v, dict):
+            r.keys(v, e, {"mass", "inertia"}, required=("mass",))
+            m = r.number(v["mass"], f"{e}.mass", positive=True)
+            inertia = _inertia(v["inertia"], f"{e}.inertia", planar, r, allow_zero=True) \
+                if "inertia" in v else np.zeros((3, 3))
+        else:
+            m = r.number(v, e, positive=True)
+            inertia = np.zeros((3, 3))
+        pm_nodes.append(i)
+        pm_mass.append(m)
+        pm_inertia.append(inertia)
+    masses = PointMasses(np.array(pm_nodes, dtype=int), np.array(pm_mass, dtype=float),
+                         np.array(pm_inertia, dtype=float).reshape(-1, 3, 3))
+
+    # bodies
+    bodies = []
+    owner = {}
+    raw_bodies = r.mapping(data.get("bodies"), "bodies")
+    for bi, (bname, b) in enumerate(raw_bodies.items()):
+        e = f"bodies.{bname}"
+        if bname == "ground":
+            r.fail(e, "'ground' is the name of the fixed frame; rename the body")
+        r.keys(b, e, {"mass", "com", "inertia", "nodes"}, required=("mass",))
+        m = r.number(b["mass"], f"{e}.mass", nonneg=True)
+        if m > 0:
+            for k in ("com", "inertia"):
+                if k not in b:
+                    r.fail(e, f"a body with mass needs '{k}'")
+        if "com" in b:
+            com = coords[node(b["com"], f"{e}.com")] if isinstance(b["com"], str) \
+                else r.vector(b["com"], f"{e}.com")
+            if planar and com[1] != 0:
+                r.fail(f"{e}.com", "is off the x-z plane of a plane: xz model")
+        else:
+            com = None
+        inertia = _inertia(b["inertia"], f"{e}.inertia", planar, r, allow_zero=False) \
+            if "inertia" in b else np.zeros((3, 3))
+        bnodes = []
+        for k, n in enumerate(r.listing(b.get("nodes", []) or [], f"{e}.nodes")):
+            i = node(n, f"{e}.nodes[{k}]")
+            if i in bnodes:
+                r.fail(f"{e}.nodes[{k}]", f"node '{n}' is listed twice")
+            owner.setdefault(i, []).append(bi)
+            bnodes.append(i)
+        if com is None:
+            com = coords[bnodes].mean(axis=0) if bnodes else np.zeros(3)
+        names.add("body", bname, bi)
+        bodies.append(Body(bname, m, com, inertia, tuple(bnodes)))
+
+    def body(v, entry):
+        if v == "ground":
+            return GROUND
+        return names.get(v, "body", entry)[1]
+
+    # joints
+    joints = []
+    for k, j in enumerate(r.listing(data.get("joints", []) or [], "joints")):
+        e = f"joints[{k}]"
+        r.keys(j, e, {"type", "bodies", "at", "axis"}, required=("type", "bodies", "at"))
+        if j["type"] not in JOINT_TYPES:
+            r.fail(f"{e}.type", f"unknown joint type {j['type']!r}; use one of "
+                   f"{', '.join(JOINT_TYPES)}")
+        pair = r.listing(j["bodies"], f"{e}.bodies")
+        if len(pair) != 2:
+            r.fail(f"{e}.bodies", "a joint connects exactly two bodies (one may be ground)")
+        b1, b2 = body(pair[0], f"{e}.bodies[0]"), body(pair[1], f"{e}.bodies[1]")
+        if b1 == b2:
+            r.fail(f"{e}.bodies", "a joint connects two different bodies")
+        at = node(j["at"], f"{e}.at")
+        axis = None
+        if j["type"] in ("hinge", "slider"):
+            if "axis" in j:
+                axis = r.unit(j["axis"], f"{e}.axis")
+            elif planar and j["type"] == "hinge":
+                axis = np.array([0.0, 1.0, 0.0])
+            else:
+                r.fail(e, f"a {j['type']} joint needs 'axis'")
+            if planar and j["type"] == "hinge" and abs(abs(axis[1]) - 1) > 1e-12:
+                r.fail(f"{e}.axis", "a hinge in a plane: xz model turns about [0, 1, 0]")
+            if planar and j["type"] == "slider" and abs(axis[1]) > 1e-12:
+                r.fail(f"{e}.axis", "a slider in a plane: xz model slides in the plane (y = 0)")
+        elif "axis" in j:
+            r.fail(f"{e}.axis", f"a {j['type']} joint has no axis; remove it")
+        joints.append(Joint(j["type"], (b1, b2), at, axis, e))
+
+    joint_nodes = {}
+    for j in joints:
+        joint_nodes.setdefault(j.at, set()).update(j.bodies)
+    for i, owners in owner.items():
+        shared = joint_nodes.get(i, set())
+        if len(owners) > 1 and not set(owners) <= shared:
+            r.fail(f"bodies.{bodies[owners[1]].name}.nodes",
+                   f"node '{node_names[i]}' is already carried by body "
+                   f"'{bodies[owners[0]].name}'; a node belongs to one body unless a "
+                   "joint between them is at it")
+        if i in ground and GROUND not in shared:
+            r.fail(f"bodies.{bodies[owners[0]].name}.nodes",
+                   f"node '{node_names[i]}' is in ground; only the node of a joint to the "
+                   "ground may be both")
+
+    # springs
+    springs = []
+    seen = set()
+    for k, s in enumerate(r.listing(data.get("springs", []) or [], "springs")):
+        e = f"springs[{k}]"
+        r.keys(s, e, {"name", "type", "nodes", "bodies", "at", "axis", "stiffness", "psi"},
+               required=("type", "stiffness"))
+        sname = r.name(s.get("name", f"spring{k + 1}"), f"{e}.name")
+        if sname in seen:
+            r.fail(f"{e}.name", f"spring name '{sname}' is used twice")
+        seen.add(sname)
+        e = f"springs.{sname}" if "name" in s else e
+        c = r.number(s["stiffness"], f"{e}.stiffness", positive=True)
+        psi = r.number(s.get("psi", 0.0), f"{e}.psi", nonneg=True)
+        if s["type"] == "axial":
+            for bad in ("bodies", "axis"):
+                if bad in s:
+                    r.fail(f"{e}.{bad}", "an axial spring joins two nodes; use 'nodes'")
+            pair = r.listing(s.get("nodes"), f"{e}.nodes")
+            if len(pair) != 2:
+                r.fail(f"{e}.nodes", "an axial spring joins exactly two nodes")
+            a, b = node(pair[0], f"{e}.nodes[0]"), node(pair[1], f"{e}.nodes[1]")
+            if np.linalg.norm(coords[b] - coords[a]) <= 1e-9 * scale:
+                r.fail(f"{e}.nodes", "the two nodes coincide: an axial spring needs a length")
+            springs.append(Spring(sname, "axial", c, psi, nodes=(a, b)))
+        elif s["type"] == "rotational":
+            if "nodes" in s:
+                r.fail(f"{e}.nodes", "a rotational spring joins two bodies; use 'bodies'")
+            pair = r.listing(s.get("bodies"), f"{e}.bodies")
+            if len(pair) != 2:
+                r.fail(f"{e}.bodies", "a rotational spring joins exactly two bodies")
+            b1, b2 = body(pair[0], f"{e}.bodies[0]"), body(pair[1], f"{e}.bodies[1]")
+            if b1 == b2:
+                r.fail(f"{e}.bodies", "a rotational spring joins two different bodies")
+            at = node(s["at"], f"{e}.at") if "at" in s else -1
+            if "axis" in s:
+                axis = r.unit(s["axis"], f"{e}.axis")
+            elif planar:
+                axis = np.array([0.0, 1.0, 0.0])
+            else:
+                r.fail(e, "a rotational spring in a 3D model needs 'axis'")
+            if planar and abs(abs(axis[1]) - 1) > 1e-12:
+                r.fail(f"{e}.axis", "in a plane: xz model rotations are about [0, 1, 0]")
+            springs.append(Spring(sname, "rotational", c, psi, bodies=(b1, b2), at=at,
+                                  axis=axis))
+        else:
+            r.fail(f"{e}.type", f"unknown spring type {s['type']!r}; use axial or rotational")
+
+    # drums
+    drums = []
+    for di, (dname, d) in enumerate(r.mapping(data.get("drums"), "drums").items()):
+        e = f"drums.{dname}"
+        if dname in names.kinds:
+            r.fail(e, f"'{dname}' is also a {', '.join(names.kinds[dname])} name; rope paths "
+                   "need drum names distinct from node names")
+        r.keys(d, e, {"node", "radius", "inertia", "motor", "brake"},
+               required=("node", "radius", "inertia"))
+        motor = d.get("motor") or {}
+        r.keys(motor, f"{e}.motor", {"rotor_inertia", "gear_ratio"},
+               required=("rotor_inertia", "gear_ratio") if motor else ())
+        drums.append(Drum(
+            dname, node(d["node"], f"{e}.node"),
+            r.number(d["radius"], f"{e}.radius", positive=True),
+            r.number(d["inertia"], f"{e}.inertia", positive=True),
+            r.number(motor.get("rotor_inertia", 0.0), f"{e}.motor.rotor_inertia",
+                     nonneg=True),
+            r.number(motor.get("gear_ratio", 1.0), f"{e}.motor.gear_ratio", positive=True),
+            r.boolean(d.get("brake", False), f"{e}.brake")))
+        names.add("drum", dname, di)
+
+    # ropes
+    ropes = []
+    for rname, rp in r.mapping(data.get("ropes"), "ropes").items():
+        ropes.append(_rope(rname, rp, r, names, coords, scale, node_names, drums))
+        names.add("rope", rname, len(ropes) - 1)
+
+    # members
+    members = []
+    for mname, m in r.mapping(data.get("members"), "members").items():
+        members.append(_member(mname, m, r, node, coords, scale, planar))
+        names.add("member", mname, len(members) - 1)
+
+    # linear drives
+    linear = []
+    for lname, ld in r.mapping(data.get("linear_drives"), "linear_drives").items():
+        e = f"linear_drives.{lname}"
+        r.keys(ld, e, {"nodes", "pinion_radius", "gear_ratio", "rotor_inertia"},
+               required=("nodes", "pinion_radius", "gear_ratio"))
+        pair = r.listing(ld["nodes"], f"{e}.nodes")
+        if len(pair) != 2:
+            r.fail(f"{e}.nodes", "a linear drive sets the distance between two nodes")
+        a, c = node(pair[0], f"{e}.nodes[0]"), node(pair[1], f"{e}.nodes[1]")
+        if np.linalg.norm(coords[c] - coords[a]) <= 1e-9 * scale:
+            r.fail(f"{e}.nodes", "the two nodes coincide; the drive needs a length")
+        linear.append(LinearDrive(
+            lname, (a, c), r.number(ld["pinion_radius"], f"{e}.pinion_radius", positive=True),
+            r.number(ld["gear_ratio"], f"{e}.gear_ratio", positive=True),
+            r.number(ld.get("rotor_inertia", 0.0), f"{e}.rotor_inertia", nonneg=True)))
+
+    effects = _effects(data.get("effects"), Effects(), r, "effects")
+    name = data.get("name", os.path.splitext(os.path.basename(file))[0])
+    return Model(
+        name=str(name), file=file, text=text, planar=planar, gravity=gravity,
+        node_names=node_names, coords=coords, ground=np.array(ground, dtype=int),
+        masses=masses, bodies=tuple(bodies), joints=tuple(joints), springs=tuple(springs),
+        drums=tuple(drums), ropes=tuple(ropes), members=tuple(members),
+        linear_drives=tuple(linear), effects=effects)
+
+
+def _inertia(v, entry, planar, r, allow_zero):
+    """Scalar (planar, about y), [Ixx, Iyy, Izz] or a full 3x3 list -> (3, 3)."""
+    if planar and not isinstance(v, list):
+        iyy = r.number(v, entry, nonneg=allow_zero, positive=not allow_zero)
+        return np.diag([0.0, iyy, 0.0])
+    if isinstance(v, list) and len(v) == 3 and all(isinstance(x, list) for x in v):
+        inertia = np.array([r.vector(row, f"{entry}[{i}]") for i, row in enumerate(v)])
+        if not np.allclose(inertia, inertia.T, rtol=1e-12, atol=0):
+            r.fail(entry, "a full inertia tensor must be symmetric")
+    else:
+        if not planar and not isinstance(v, list):
+            r.fail(entry, "in a 3D model give [Ixx, Iyy, Izz] or a full 3x3 list")
+        inertia = np.diag(r.vector(v, entry))
+    eig = np.linalg.eigvalsh(inertia)
+    if planar:
+        eig = np.array([inertia[1, 1]])
+    if eig.min() < 0 or (not allow_zero and eig.min() <= 0):
+        r.fail(entry, f"must be positive definite (principal values {np.round(eig, 6)})")
+    return inertia
+
+
+def _rope(name, rp, r, names, coords, scale, node_names, drums):
+    e = f"ropes.{name}"
+    r.keys(rp, e, {"EA", "mass_per_length", "psi", "extra_length", "path"},
+           required=("EA", "path"))
+    path = r.listing(rp["path"], f"{e}.path", min_len=2)
+    points = []          # (kind, index) after tackle expansion
+    span_a, span_b, falls = [], [], []
+
+    def point(v, entry):
+        return names.get(v, ("node", "drum"), entry)
+
+    def node_of(p):
+        return drums[p[1]].node if p[0] == "drum" else p[1]
+
+    current = None
+    for k, entry in enumerate(path):
+        pe = f"{e}.path[{k}]"
+        n = 1
+        if isinstance(entry, dict):
+            r.keys(entry, pe, {"node", "falls"}, required=("node", "falls"))
+            n = r.integer(entry["falls"], f"{pe}.falls", minimum=1)
+            if k == 0:
+                r.fail(pe, "a tackle needs a previous point; the first entry is the rope's end")
+            p = ("node", names.get(entry["node"], "node", f"{pe}.node")[1])
+        else:
+            p = point(entry, pe)
+        if p[0] == "drum" and 0 < k < len(path) - 1:
+            r.fail(pe, f"drum '{entry}' in the middle of the path; a drum is a rope end "
+                   "(first or last entry)")
+        if current is None:
+            current = p
+            points.append(p)
+            continue
+        a, b = node_of(current), node_of(p)
+        if np.linalg.norm(coords[b] - coords[a]) <= 1e-9 * scale:
+            r.fail(pe, f"span {_pname(current, node_names, drums)} -> "
+                   f"{_pname(p, node_names, drums)} has zero length; move a node or "
+                   "remove the entry")
+        span_a.append(a)
+        span_b.append(b)
+        falls.append(n)
+        points.extend([p, current] * (n // 2) + ([p] if n % 2 else []))
+        if n % 2:          # odd tackle: continues at X; even: back at P
+            current = p
+        elif k == len(path) - 1 and current[0] == "drum":
+            pass           # even tackle back to a drum: both ends on it
+    ends = [points[0], points[-1]]
+    end_drums = tuple(p[1] for p in ends if p[0] == "drum")
+    return Rope(
+        name, r.number(rp["EA"], f"{e}.EA", positive=True),
+        r.number(rp.get("mass_per_length", 0.0), f"{e}.mass_per_length", nonneg=True),
+        r.number(rp.get("psi", 0.0), f"{e}.psi", nonneg=True),
+        r.number(rp.get("extra_length", 0.0), f"{e}.extra_length", nonneg=True),
+        np.array(span_a, dtype=int), np.array(span_b, dtype=int),
+        np.array(falls, dtype=int), end_drums,
+        tuple(_pname(p, node_names, drums) for p in points))
+
+
+def _pname(p, node_names, drums):
+    return drums[p[1]].name if p[0] == "drum" else node_names[p[1]]
+
+
+def _member(name, m, r, node, coords, scale, planar):
+    e = f"members.{name}"
+    r.keys(m, e, {"type", "nodes", "E", "G", "A", "Iy", "Iz", "J", "rho", "orientation",
+                  "elements", "mass", "psi"}, required=("type", "nodes", "E", "A"))
+    kind = m["type"]
+    if kind not in ("beam", "truss"):
+        r.fail(f"{e}.type", f"unknown member type {kind!r}; use beam or truss")
+    chain = [node(n, f"{e}.nodes[{k}]") for k, n in
+             enumerate(r.listing(m["nodes"], f"{e}.nodes", min_len=2))]
+    for k in range(1, len(chain)):
+        if np.linalg.norm(coords[chain[k]] - coords[chain[k - 1]]) <= 1e-9 * scale:
+            r.fail(f"{e}.nodes[{k}]", "zero-length piece: consecutive nodes coincide")
+    kw = {}
+    if kind == "beam":
+        need = ("G", "Iy", "Iz", "J") if not planar else ("Iy",)
+        for k in need:
+            if k not in m:
+                r.fail(e, f"a beam needs '{k}'")
+        for k in ("G", "Iy", "Iz", "J"):
+            if k in m:
+                kw[k] = r.number(m[k], f"{e}.{k}", positive=True)
+        if "orientation" in m:
+            kw["orientation"] = r.unit(m["orientation"], f"{e}.orientation")
+        elif not planar:
+            r.fail(e, "a 3D beam needs 'orientation' (a vector in its local x-z plane)")
+    else:
+        for k in ("G", "Iy", "Iz", "J", "orientation"):
+            if k in m:
+                r.fail(f"{e}.{k}", "a truss has only axial stiffness; remove it")
+    elements = r.integer(m.get("elements", 1), f"{e}.elements", minimum=1)
+    if kind == "truss" and elements != 1:
+        r.fail(f"{e}.elements", "a subdivided truss would be a mechanism; use 1")
+    mass = m.get("mass", "consistent")
+    if mass not in ("consistent", "lumped"):
+        r.fail(f"{e}.mass", f"{mass!r} is not consistent or lumped")
+    return Member(name, kind, tuple(chain), r.number(m["E"], f"{e}.E", positive=True),
+                  r.number(m["A"], f"{e}.A", positive=True),
+                  r.number(m.get("rho", 0.0), f"{e}.rho", nonneg=True),
+                  elements=elements, mass=mass,
+                  psi=r.number(m.get("psi", 0.0), f"{e}.psi", nonneg=True), **kw)

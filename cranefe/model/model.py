@@ -1,0 +1,165 @@
+"""The checked, frozen model: plain data built by `cranefe.model.load`.
+
+Indices refer to ``Model.node_names`` (nodes), ``Model.bodies`` (bodies; ``GROUND`` = -1
+is the fixed frame) and ``Model.drums``. Coordinates are always 3-vectors; a planar model
+(``plane: xz``) has y = 0 everywhere and motion only in the x-z plane.
+"""
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+GROUND = -1
+
+EFFECT_CHOICES = {
+    "drive": ("coupled", "held", "reduced"),
+    "damping": ("none", "modal", "exact"),
+    "structure": ("rigid", "flexible"),
+}
+
+
+@dataclass(frozen=True)
+class Effects:
+    """Which physics is on (model-format.md, "Effects")."""
+
+    rope_elasticity: bool = True
+    rope_mass: int = 0
+    sway: bool = True
+    drive: str = "coupled"
+    damping: str = "none"
+    structure: str = "rigid"
+
+    def as_dict(self):
+        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+
+
+@dataclass(frozen=True)
+class Body:
+    name: str
+    mass: float
+    com: np.ndarray          # (3,)
+    inertia: np.ndarray      # (3, 3) about the com, global axes
+    nodes: tuple             # node indices carried rigidly
+
+
+@dataclass(frozen=True)
+class Joint:
+    type: str                # fixed | hinge | ball | slider
+    bodies: tuple            # (b1, b2) body indices, GROUND for the fixed frame
+    at: int                  # node index
+    axis: np.ndarray         # (3,) unit vector (hinge, slider), else None
+    entry: str               # "joints[3]" for messages
+
+
+@dataclass(frozen=True)
+class Spring:
+    name: str
+    type: str                # axial | rotational
+    stiffness: float
+    psi: float
+    nodes: tuple = ()        # axial: (a, b)
+    bodies: tuple = ()       # rotational: (b1, b2)
+    at: int = -1             # rotational: node (informative)
+    axis: np.ndarray = None  # rotational: unit vector
+
+
+@dataclass(frozen=True)
+class Drum:
+    name: str
+    node: int
+    radius: float
+    inertia: float           # drum and all that turns with it, at drum speed
+    rotor_inertia: float     # at motor speed
+    gear_ratio: float
+    brake: bool
+
+    @property
+    def reduced_inertia(self):
+        """Drum plus motor rotor reduced to drum speed: J + J_rotor i^2."""
+        return self.inertia + self.rotor_inertia * self.gear_ratio**2
+
+
+@dataclass(frozen=True)
+class Rope:
+    """A rope expanded into spans (tackles already resolved)."""
+
+    name: str
+    EA: float
+    mass_per_length: float
+    psi: float
+    extra_length: float
+    span_a: np.ndarray       # (ns,) node index where each span starts
+    span_b: np.ndarray       # (ns,) node index where it ends
+    falls: np.ndarray        # (ns,) multiplicity of each span
+    end_drums: tuple         # drum indices at the rope's ends (0, 1 or 2 entries)
+    points: tuple            # the expanded point sequence, names (for reports)
+
+
+@dataclass(frozen=True)
+class Member:
+    name: str
+    type: str                # beam | truss
+    nodes: tuple
+    E: float
+    A: float
+    rho: float
+    G: float = 0.0
+    Iy: float = 0.0
+    Iz: float = 0.0
+    J: float = 0.0
+    orientation: np.ndarray = None
+    elements: int = 1
+    mass: str = "consistent"
+    psi: float = 0.0
+
+
+@dataclass(frozen=True)
+class LinearDrive:
+    name: str
+    nodes: tuple             # (A, C)
+    pinion_radius: float
+    gear_ratio: float
+    rotor_inertia: float
+
+
+@dataclass(frozen=True)
+class PointMasses:
+    nodes: np.ndarray        # (k,)
+    mass: np.ndarray         # (k,)
+    inertia: np.ndarray      # (k, 3, 3)
+
+
+@dataclass(frozen=True)
+class Model:
+    name: str
+    file: str
+    text: str
+    planar: bool
+    gravity: np.ndarray
+    node_names: tuple
+    coords: np.ndarray       # (n, 3)
+    ground: np.ndarray       # node indices
+    masses: PointMasses
+    bodies: tuple
+    joints: tuple
+    springs: tuple
+    drums: tuple
+    ropes: tuple
+    members: tuple
+    linear_drives: tuple
+    effects: Effects
+    analysis: dict = field(default_factory=dict)   # from a scene; {} for a model
+    scene: str = None                               # scene name, if loaded from one
+
+    @property
+    def node_index(self):
+        return {n: i for i, n in enumerate(self.node_names)}
+
+    @property
+    def length_scale(self):
+        """Size of the model (m), for tolerances and scale factors."""
+        span = np.ptp(self.coords, axis=0).max() if len(self.coords) else 0.0
+        return float(span) if span > 0 else 1.0
+
+    def with_effects(self, **changes):
+        return replace(self, effects=replace(self.effects, **changes))

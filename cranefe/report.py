@@ -1,0 +1,66 @@
+"""Presentation of results: JSON documents (design.md, "Command-line contract") and tables."""
+
+import json
+import math
+
+import numpy as np
+
+
+def _num(x):
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def modes_document(result, comparison=None):
+    """The JSON document of ``cranefe modes --json``."""
+    doc = {
+        "model": result.model_name,
+        "effects": result.effects,
+        "dofs": result.dofs,
+        "quasi_cyclic": list(result.quasi_cyclic),
+        "massless_condensed": len(result.massless),
+        "solver": result.solver,
+        "modes": [{"index": i + 1, "frequency_hz": _num(f), "omega_rad_s": _num(w),
+                   "period_s": _num(t), "rigid": bool(r)}
+                  for i, (f, w, t, r) in enumerate(zip(result.frequency_hz, result.omega,
+                                                       result.period_s, result.rigid))],
+        "timings_s": {k: round(v, 6) for k, v in result.timings.items()},
+        "warnings": list(result.warnings),
+    }
+    if comparison is not None:
+        doc["drive_reduction"] = comparison
+    return doc
+
+
+def dumps(doc):
+    return json.dumps(doc, indent=2, allow_nan=False)
+
+
+def modes_table(result, comparison=None):
+    eff = ", ".join(f"{k} {_fmt_effect(v)}" for k, v in result.effects.items())
+    lines = [f"{result.model_name}: {result.dofs} coordinates ({eff})"]
+    if result.quasi_cyclic:
+        lines.append(f"quasi-cyclic (zero-frequency) coordinates: "
+                     f"{', '.join(result.quasi_cyclic)}")
+    if result.massless:
+        lines.append(f"massless coordinates condensed statically: {len(result.massless)}")
+    head = f"{'mode':>5} {'f [Hz]':>12} {'w [rad/s]':>12} {'T [s]':>10}"
+    red = {c['index']: c for c in (comparison or {}).get("modes", [])}
+    if red:
+        head += f" {'f coupled [Hz]':>15} {'error':>9}"
+    lines += [head, "-" * len(head)]
+    for i, (f, w, t, r) in enumerate(zip(result.frequency_hz, result.omega, result.period_s,
+                                         result.rigid)):
+        row = f"{i + 1:>5} {f:>12.5g} {w:>12.5g} {t:>10.4g}" if not r else \
+            f"{i + 1:>5} {0:>12.5g} {0:>12.5g} {'inf':>10}  rigid (quasi-cyclic)"
+        if i + 1 in red:
+            c = red[i + 1]
+            row += f" {c['frequency_hz_coupled']:>15.5g} {100 * c['relative_error']:>8.3f}%"
+        lines.append(row)
+    for w in result.warnings:
+        lines.append(f"warning: {w}")
+    return "\n".join(lines)
+
+
+def _fmt_effect(v):
+    return {True: "on", False: "off"}.get(v, v) if isinstance(v, bool) else str(v)

@@ -1,0 +1,163 @@
+"""The static state under gravity in the reference geometry (model-format.md, "Static state").
+
+Linear static solution with every drum held and only elastic stiffness; it gives the rope
+tensions, spring forces, joint and drive reactions from which the tension stiffness of
+spans and the load stiffness of rigid bodies are formed (docs/theory.md).
+"""
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .assemble import mass_and_gravity, spring_rows, _pattern
+from .condense import DENSE_MAX, null_space
+from .dofs import build_dofs
+from .elements import span_geometry
+from .errors import AnalysisError, ModelError
+from .model import GROUND
+
+
+@dataclass(frozen=True)
+class StaticState:
+    model: object
+    u: np.ndarray              # (n_primitive,) static displacement from the unstressed state
+    element_force: np.ndarray  # (ne,) rope tension / spring force / spring moment
+    element_names: tuple
+    drive_force: np.ndarray    # (nld,) axial force of linear drives (tension positive)
+    node_force: np.ndarray     # (nn, 3) force of elements and drives on each node
+    joint_forces: tuple        # (g1, g2, point, F): F acts on g1, -F on g2
+    gravity_points: tuple      # (body, point, force) of every weight a body carries
+
+    @property
+    def rope_tension(self):
+        return self.element_force[:len(self.model.ropes)]
+
+    def spans(self):
+        """(a, b, falls, N) of every straight tension-carrying span."""
+        m = self.model
+        for r, S in zip(m.ropes, self.rope_tension):
+            yield r.span_a, r.span_b, r.falls.astype(float), np.full(len(r.falls), S)
+        k = len(m.ropes)
+        for s, N in zip(m.springs, self.element_force[k:]):
+            if s.type == "axial":
+                yield np.array(s.nodes[:1]), np.array(s.nodes[1:]), np.ones(1), np.array([N])
+        for d, N in zip(m.linear_drives, self.drive_force):
+            yield np.array(d.nodes[:1]), np.array(d.nodes[1:]), np.ones(1), np.array([N])
+
+    def point_forces(self, dofs):
+        """Per rigid group g: (g, points (k, 3), forces (k, 3)) acting on it."""
+        m = self.model
+        per = {}
+
+        def add(g, p, F):
+            if g != GROUND and g >= 0:
+                per.setdefault(g, ([], []))
+                per[g][0].append(p)
+                per[g][1].append(F)
+
+        for b, p, F in self.gravity_points:
+            add(dofs.group_of_body[b], p, F)
+        for i in np.flatnonzero(dofs.carrier >= 0):
+            add(dofs.carrier[i], m.coords[i], self.node_force[i])
+        for g1, g2, p, F in self.joint_forces:
+            add(g1, p, F)
+            add(g2, p, -F)
+        for g, (p, F) in per.items():
+            yield g, np.array(p), np.array(F)
+
+
+def solve_static(model):
+    """Linear static solution under gravity, drums held, elastic stiffness only."""
+    effects = replace(model.effects, sway=False, drive="held", rope_elasticity=True)
+    dofs = build_dofs(model, effects)
+    layout = dofs.layout
+    springs = spring_rows(model, layout)
+    K_u = (springs.R.T @ sp.diags(springs.c) @ springs.R).tocsr()
+    _, f_u, gravity_points = mass_and_gravity(model, dofs)
+    T = dofs.T
+    K = (T.T @ K_u @ T).tocsr()
+    f = T.T @ f_u
+    q = _solve(K, f, _pattern(springs, None, T), dofs, model)
+    u = T @ q
+    element_force = springs.c * (springs.R @ u)
+    nn = layout.n_nodes
+    node_force = (f_u[:3 * nn] - (K_u @ u)[:3 * nn]).reshape(nn, 3)
+    # point masses on bodies are in gravity_points; keep node_force to element forces there
+    carried = dofs.carrier >= 0
+    node_force[carried] = -(K_u @ u)[:3 * nn].reshape(nn, 3)[carried]
+
+    # reactions of constraints: G^T lam = K_map u_map - f_map
+    joint_forces, drive_force = [], np.zeros(len(model.linear_drives))
+    if dofs.constraints:
+        u_map = dofs.T_c @ q
+        res = dofs.T_map.T @ (K_u @ (dofs.T_map @ u_map)) - dofs.T_map.T @ f_u
+        G = np.vstack([c.rows for c in dofs.constraints])
+        lam = sla.lstsq(G.T, res)[0]
+        k = 0
+        for c in dofs.constraints:
+            lc = lam[k:k + len(c.rows)]
+            k += len(c.rows)
+            kind, i = c.owner
+            if kind == "joint":
+                joint_forces.append((*c.groups, c.point, c.directions.T @ lc))
+            elif kind == "drive":
+                a, cc = model.linear_drives[i].nodes
+                e, _ = span_geometry(model.coords, np.array([a]), np.array([cc]))
+                drive_force[i] = -lc[0]            # pushes C away from A: compression
+                node_force[cc] += lc[0] * e[0]
+                node_force[a] -= lc[0] * e[0]
+    _check_free_nodes(model, dofs, node_force)
+    return StaticState(model, u, element_force, springs.names, drive_force, node_force,
+                       tuple(joint_forces), tuple(gravity_points))
+
+
+def _solve(K, f, P, dofs, model):
+    """Solve K q = f; directions no element resists must carry no load."""
+    n = K.shape[0]
+    if n == 0:
+        return np.zeros(0)
+    if n > DENSE_MAX:
+        try:
+            return spla.splu(K.tocsc()).solve(f)
+        except RuntimeError as exc:
+            raise AnalysisError(f"static solution failed ({exc}): the model is a "
+                                "mechanism under gravity") from None
+    N = null_space(P.toarray())
+    Kd = K.toarray()
+    if N.shape[1]:
+        load = N.T @ f
+        scale = np.linalg.norm(f) or 1.0
+        if np.abs(load).max() > 1e-8 * scale:
+            k = int(np.argmax(np.abs(load)))
+            v = N[:, k]
+            top = np.argsort(-np.abs(v))[:3]
+            names = ", ".join(dofs.labels[i] for i in top if abs(v[i]) > 0.1 * abs(v).max())
+            raise ModelError(
+                f"not in static equilibrium: gravity moves {names} with nothing to resist "
+                f"it (unbalanced {abs(load[k]):.4g} N); support it with a joint, rope or "
+                "spring, or fix it", model.file)
+        alpha = np.abs(np.diag(Kd)).max() or 1.0
+        Kd = Kd + alpha * N @ N.T
+    return sla.solve(Kd, f, assume_a="sym")
+
+
+def _check_free_nodes(model, dofs, node_force):
+    """Free nodes must be in equilibrium in every direction, not only along their ropes."""
+    free = np.flatnonzero(dofs.carrier == -2)
+    if not len(free):
+        return
+    pm = dict(zip(model.masses.nodes.tolist(), model.masses.mass))
+    for i in free:
+        F = node_force[i]
+        weight = pm.get(int(i), 0.0) * np.linalg.norm(model.gravity)
+        scale = max(weight, 1e-300)
+        if np.linalg.norm(F) > 1e-6 * scale and weight > 0:
+            raise ModelError(
+                f"node '{model.node_names[i]}' is not in static equilibrium in the reference "
+                f"geometry: its ropes and springs cannot balance a force of "
+                f"{np.array2string(F, precision=4)} N (its weight is {weight:.4g} N); move it "
+                "so that its ropes hang along gravity (the reference geometry is the "
+                "static equilibrium)", model.file, f"nodes.{model.node_names[i]}")
