@@ -70,7 +70,7 @@ def run(args):
         print(f"  {e['name']:<28} {length:>11} {e['stiffness']:>12.4g} "
               f"{e['static_force']:>13.5g}  ({unit})")
         if "path" in e:
-            print(f"    path: {' - '.join(e['path'])} ({e["falls"]} rope parts)")
+            print(f"    path: {' - '.join(e['path'])} ({e['falls']} rope parts)")
     for w in warnings:
         print(f"  warning: {w}")
     return 0
