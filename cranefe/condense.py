@@ -129,7 +129,7 @@ def condense(system, method="schur"):
     Tq = np.zeros((len(a), len(a)))                  # q_a = Tq [y1; y2]
     Tq[p, :len(p)] = np.eye(len(p))
     Tq[np.ix_(p, len(p) + np.arange(len(c)))] = W
-    Tq[c, len(p) + np.arange(len(c))] = np.eye(len(c))
+    Tq[np.ix_(c, len(p) + np.arange(len(c)))] = np.eye(len(c))
     A = Tq.T @ Ma @ Tq
     cc = len(p) + np.arange(len(c))
     A1 = schur(A, cc) if method == "schur" else sequential(A, cc)

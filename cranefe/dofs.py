@@ -279,7 +279,9 @@ def build_dofs(model, effects=None):
 
     constraints = _constraint_rows(model, effects, layout, T_map, group_of_body, group_q,
                                    group_ref, comps)
-    T_c, keep = _eliminate(constraints, n_map, labels, model)
+    rotation = np.array([k == "drum" or (k == "body" and lab[-2:] in ("rx", "ry", "rz"))
+                         for k, lab in zip(kinds, labels)], dtype=bool)
+    T_c, keep = _eliminate(constraints, n_map, rotation, model.length_scale)
     return DofMap(layout, (T_map @ T_c).tocsr(), T_map, T_c,
                   tuple(labels[i] for i in keep), tuple(kinds[i] for i in keep),
                   group_of_body, group_ref, group_q, carrier, tuple(constraints))
@@ -353,7 +355,7 @@ def _perp(axis):
     return vt[1:]
 
 
-def _eliminate(constraints, n_map, labels, model):
+def _eliminate(constraints, n_map, rotation, length_scale):
     """Master-slave elimination of G q_map = 0 -> (T_c (n_map, n), kept master indices)."""
     if not constraints:
         return sp.identity(n_map, format="csr"), np.arange(n_map)
@@ -363,15 +365,14 @@ def _eliminate(constraints, n_map, labels, model):
         return sp.identity(n_map, format="csr"), np.arange(n_map)
     GJ = G[:, involved]
     # scale rotation columns by the model size so pivoting compares like with like
-    scale = np.array([model.length_scale if lab.split()[-1].startswith("r") else 1.0
-                      for lab in np.array(labels)[involved]])
+    scale = np.where(rotation[involved], length_scale, 1.0)
     Q, R, piv = sla.qr(GJ * scale, pivoting=True, mode="economic")
     diag = np.abs(np.diag(R))
     rank = int(np.sum(diag > 1e-10 * diag[0])) if len(diag) else 0
     slaves, masters = piv[:rank], piv[rank:]
-    # R11 (x_s / scale_s) + R12 (x_m / scale_m) = 0
+    # in scaled unknowns x~ = x / scale: R11 x~_s + R12 x~_m = 0
     W = -sla.solve_triangular(R[:rank, :rank], R[:rank, rank:])
-    W = W / scale[slaves][:, None] * scale[masters][None, :]
+    W = W * scale[slaves][:, None] / scale[masters][None, :]
     slave_global = involved[slaves]
     keep = np.setdiff1d(np.arange(n_map), slave_global)
     col_of = {q: k for k, q in enumerate(keep)}

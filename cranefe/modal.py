@@ -70,6 +70,9 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
     else:
         omega, shapes, rigid, qc, ml = _sparse(system, count or 10)
     t2 = time.perf_counter()
+    # sign convention: the largest component of each shape is positive
+    big = np.argmax(np.abs(shapes), axis=0)
+    shapes = shapes * np.where(shapes[big, np.arange(shapes.shape[1])] < 0, -1.0, 1.0)
     nodes = (system.dofs.T[:3 * system.dofs.layout.n_nodes] @ shapes).T
     result = ModalResult(
         model.name, system.effects.as_dict(), system.dofs.labels, omega, shapes,
@@ -138,8 +141,8 @@ def _sparse(system, k):
     lam, Xa = spla.eigsh(A, k=k, M=Ma, sigma=sigma, OPinv=OP, which="LM")
     order = np.argsort(lam)
     lam, Xa = lam[order], Xa[:, order]
-    tol = 1e-8 * max(abs(lam).max(), 1e-300)
-    rigid = lam < tol
+    rigid = lam < 1e-10 * ratio          # zero to round-off of K - sigma M
+
     _check_stable(np.where(rigid, 0, lam), ())
     X = np.zeros((n, k))
     X[a] = Xa
