@@ -364,15 +364,19 @@ def _eliminate(constraints, n_map, rotation, length_scale):
     if len(involved) == 0:
         return sp.identity(n_map, format="csr"), np.arange(n_map)
     GJ = G[:, involved]
-    # scale rotation columns by the model size so pivoting compares like with like
-    scale = np.where(rotation[involved], length_scale, 1.0)
-    Q, R, piv = sla.qr(GJ * scale, pivoting=True, mode="economic")
+    # rotations in length units (theta * model size) so pivoting compares like with like
+    scale = np.where(rotation[involved], 1.0 / length_scale, 1.0)   # theta = x~ / L
+    # translations are preferred as slaves, so joint rotations stay as the coordinates
+    # (a hinge is described by its angle); the rank decision is unaffected by the weight
+    prefer = np.where(rotation[involved], 1.0, 10.0)
+    Q, R, piv = sla.qr(GJ * scale * prefer, pivoting=True, mode="economic")
     diag = np.abs(np.diag(R))
     rank = int(np.sum(diag > 1e-10 * diag[0])) if len(diag) else 0
     slaves, masters = piv[:rank], piv[rank:]
     # in scaled unknowns x~ = x / scale: R11 x~_s + R12 x~_m = 0
     W = -sla.solve_triangular(R[:rank, :rank], R[:rank, rank:])
-    W = W * scale[slaves][:, None] / scale[masters][None, :]
+    w = scale * prefer
+    W = W * w[slaves][:, None] / w[masters][None, :]
     slave_global = involved[slaves]
     keep = np.setdiff1d(np.arange(n_map), slave_global)
     col_of = {q: k for k, q in enumerate(keep)}
