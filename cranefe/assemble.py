@@ -191,39 +191,50 @@ def mass_and_gravity(model, dofs):
 
 
 def geometric_stiffness(model, dofs, static):
-    """Tension stiffness of spans and load stiffness of rigid groups (primitive)."""
+    """Tension stiffness of spans and load stiffness of rigid groups (primitive).
+
+    Returns (K_g, P_g): the matrix and its pattern, each element block replaced by its
+    matrix absolute value V |L| V^T scaled to unit size (for the null-space test).
+    """
     layout = dofs.layout
-    rows, cols, vals = [], [], []
-
-    def add(idx, blocks):
-        k = idx.shape[1]
-        rows.append(np.repeat(idx, k, axis=1).ravel())
-        cols.append(np.tile(idx, (1, k)).ravel())
-        vals.append(blocks.ravel())
-
+    idx_list, blocks = [], []
     for a, b, falls, N in static.spans():
         e, l = span_geometry(model.coords, a, b)
-        idx = np.hstack([layout.node(a), layout.node(b)])
-        add(idx, string_stiffness(N, falls, e, l))
-
+        idx_list.append(np.hstack([layout.node(a), layout.node(b)]))
+        blocks.append(string_stiffness(N, falls, e, l))
     first_body = {}
     for b, g in enumerate(dofs.group_of_body):
         first_body.setdefault(g, b)
     for g, point, F in static.point_forces(dofs):
         H = load_stiffness(F, point - dofs.group_ref[g]).sum(axis=0)
-        add(layout.body(first_body[g])[None, 3:], H[None])
-    return _coo(rows, cols, vals, (layout.size, layout.size))
+        idx_list.append(layout.body(first_body[g])[None, 3:])
+        blocks.append(H[None])
+    shape = (layout.size, layout.size)
+    out = []
+    for absolute in (False, True):
+        rows, cols, vals = [], [], []
+        for idx, blk in zip(idx_list, blocks):
+            if absolute:
+                w, v = np.linalg.eigh(blk)
+                top = np.abs(w).max(axis=1)
+                blk = np.einsum("kij,kj,klj->kil", v, np.abs(w) / np.where(
+                    top > 0, top, 1)[:, None], v)
+            k = idx.shape[1]
+            rows.append(np.repeat(idx, k, axis=1).ravel())
+            cols.append(np.tile(idx, (1, k)).ravel())
+            vals.append(blk.ravel())
+        out.append(_coo(rows, cols, vals, shape))
+    return tuple(out)
 
 
-def _pattern(springs, Kg, T):
-    """sum of element matrices each scaled to unit size, |.| for indefinite blocks."""
+def _pattern(springs, Pg, T):
+    """Sum of element matrices each scaled to unit size (PSD, null space of K)."""
     R = springs.R
     norms = np.sqrt(np.asarray(R.multiply(R).sum(axis=1)).ravel())
     Rn = sp.diags(1 / np.where(norms > 0, norms, 1)) @ R
     P = Rn.T @ Rn
-    if Kg is not None and Kg.nnz:
-        A = abs(Kg)
-        P = P + A / abs(A).max()
+    if Pg is not None:
+        P = P + Pg
     return (T.T @ P @ T).tocsr()
 
 
@@ -244,16 +255,16 @@ def assemble(model, effects=None):
     springs = spring_rows(model, dofs.layout)
     K_u = springs.R.T @ sp.diags(springs.c) @ springs.R
     M_u, f_u, _ = mass_and_gravity(model, dofs)
-    static, Kg = None, None
+    static, Pg = None, None
     if effects.sway:
         from .statics import solve_static
         static = solve_static(model)
-        Kg = geometric_stiffness(model, dofs, static)
+        Kg, Pg = geometric_stiffness(model, dofs, static)
         K_u = K_u + Kg
     T = dofs.T
     K = (T.T @ K_u @ T).tocsr()
     K = ((K + K.T) * 0.5).tocsr()
     M = (T.T @ M_u @ T).tocsr()
     M = ((M + M.T) * 0.5).tocsr()
-    return System(model, effects, dofs, K, M, T.T @ f_u, _pattern(springs, Kg, T), springs,
+    return System(model, effects, dofs, K, M, T.T @ f_u, _pattern(springs, Pg, T), springs,
                   static, {"assemble": time.perf_counter() - t0})
