@@ -1,0 +1,28 @@
+"""`cranefe modes` stays light: no plotting or file-format library is imported for it."""
+
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+HEAVY = ("pyvista", "vtk", "h5py", "meshio", "matplotlib")
+
+
+def test_modes_imports_nothing_heavy():
+    code = ("import sys, contextlib, io\n"
+            "from cranefe.cli import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n"
+            f"    rc = main(['modes', {os.path.join(ROOT, 'models', 'hammerhead_tower_crane.yaml')!r}])\n"
+            f"print(rc, sorted(m for m in {HEAVY!r} if m in sys.modules))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "0 []"
+
+
+def test_help_and_version():
+    from cranefe.cli import main
+    assert main([]) == 2
+    try:
+        main(["--version"])
+    except SystemExit as exc:
+        assert exc.code == 0
