@@ -10,7 +10,7 @@ import sys
 from .. import __version__
 from ..errors import AnalysisError, ModelError
 
-COMMANDS = ("modes", "check")
+COMMANDS = ("modes", "check", "study")
 
 
 def _parser():
