@@ -1,6 +1,6 @@
 """Natural frequencies and mode shapes of a model or scene."""
 
-import sys
+from ._outputs import add_output_arguments, write_outputs
 
 HELP = "natural frequencies and modes"
 
@@ -11,18 +11,22 @@ def add_arguments(p):
                    "for small models, 10 for large ones, or the scene's count)")
     p.add_argument("--json", action="store_true", help="print one JSON document")
     p.add_argument("--solver", choices=("auto", "dense", "sparse"), default="auto")
+    add_output_arguments(p)
 
 
 def run(args):
+    from ..assemble import assemble
     from ..model import load
     from ..modal import drive_reduction, modes
     from ..report import dumps, modes_document, modes_table
     model = load(args.file)
     count = args.count or model.analysis.get("count")
-    result = modes(model, count=count, solver=args.solver)
+    system = assemble(model)
+    result = modes(model, count=count, solver=args.solver, system=system)
     comparison = drive_reduction(model, result) if model.effects.drive == "reduced" else None
     if args.json:
         print(dumps(modes_document(result, comparison)))
     else:
         print(modes_table(result, comparison))
+    write_outputs(args, model, system, {"modes": result}, result)
     return 0

@@ -1,0 +1,224 @@
+"""HDF5 result archives (layout: docs/archive.md, format version 1).
+
+One file keeps the model (its YAML text and parsed arrays), the effects, the coordinate
+labels, the assembled matrices (CSR) and any result dataclasses (modes, damping, ...).
+Writing goes to a temporary file in the target folder that is renamed over the target
+at the end, so a crash never leaves half a file nor destroys an earlier archive.
+"""
+
+import dataclasses
+import datetime
+import json
+import os
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import __version__
+from .errors import ModelError
+
+FORMAT = "cranefe-archive"
+FORMAT_VERSION = 1
+_COMPRESS = dict(compression="gzip", compression_opts=4, shuffle=True)
+
+
+@dataclass
+class Archive:
+    """An archive read back: metadata, model arrays, matrices and results."""
+
+    path: str
+    meta: dict
+    model: dict               # name, file, planar, yaml, node_names, coords, ground, ...
+    mesh: object              # cranefe.mesh.LineMesh
+    effects: dict
+    labels: tuple
+    K: object = None          # scipy.sparse.csr_matrix
+    M: object = None
+    f: np.ndarray = None
+    results: dict = field(default_factory=dict)
+
+
+def _result_classes():
+    from .modal import ModalResult
+    classes = {"ModalResult": ModalResult}
+    try:
+        from .damping import DampingResult
+        classes["DampingResult"] = DampingResult
+    except ImportError:
+        pass
+    return classes
+
+
+def _dataset(g, name, value):
+    value = np.asarray(value)
+    if value.dtype.kind in "US":
+        import h5py
+        return g.create_dataset(name, data=value.astype(object),
+                                dtype=h5py.string_dtype())
+    return g.create_dataset(name, data=value, **(_COMPRESS if value.size > 64 else {}))
+
+
+def _write_value(g, name, v):
+    """Store v under name in group g; returns its type tag."""
+    import scipy.sparse as sp
+    if v is None:
+        return "none"
+    if isinstance(v, (bool, int, float, str, np.bool_, np.integer, np.floating)):
+        g.attrs[name] = v
+        return "scalar"
+    if sp.issparse(v):
+        _write_csr(g.create_group(name), v)
+        return "csr"
+    if isinstance(v, dict):
+        sub = g.create_group(name)
+        sub.attrs["__json__"] = json.dumps(v, default=float)
+        return "dict"
+    if isinstance(v, (list, tuple)) and all(isinstance(x, str) for x in v):
+        _dataset(g, name, np.array(list(v), dtype=str))
+        return "strings_tuple" if isinstance(v, tuple) else "strings_list"
+    _dataset(g, name, np.asarray(v))
+    return "array"
+
+
+def _read_value(g, name, tag):
+    if tag == "none":
+        return None
+    if tag == "scalar":
+        v = g.attrs[name]
+        return v.item() if isinstance(v, np.generic) else v
+    if tag == "csr":
+        return _read_csr(g[name])
+    if tag == "dict":
+        return json.loads(g[name].attrs["__json__"])
+    if tag in ("strings_tuple", "strings_list"):
+        items = list(g[name].asstr()[()])
+        return tuple(items) if tag == "strings_tuple" else items
+    return g[name][()]
+
+
+def _attrs(a):
+    """h5py attributes as plain Python values."""
+    return {k: (v.item() if isinstance(v, np.generic) else v) for k, v in a.items()}
+
+
+def _write_dataclass(g, obj):
+    tags = {f.name: _write_value(g, f.name, getattr(obj, f.name))
+            for f in dataclasses.fields(obj)}
+    g.attrs["__class__"] = type(obj).__name__
+    g.attrs["__fields__"] = json.dumps(tags)
+
+
+def _read_dataclass(g):
+    cls = _result_classes().get(g.attrs["__class__"])
+    tags = json.loads(g.attrs["__fields__"])
+    values = {k: _read_value(g, k, t) for k, t in tags.items()}
+    return cls(**values) if cls else values
+
+
+def _write_csr(g, A):
+    A = A.tocsr()
+    g.attrs["shape"] = A.shape
+    for k in ("data", "indices", "indptr"):
+        _dataset(g, k, getattr(A, k))
+
+
+def _read_csr(g):
+    import scipy.sparse as sp
+    return sp.csr_matrix((g["data"][()], g["indices"][()], g["indptr"][()]),
+                         shape=tuple(g.attrs["shape"]))
+
+
+def write(path, model, system=None, results=None, command=None, timings=None):
+    """Write an archive atomically; returns the path."""
+    import h5py
+
+    from .mesh import KINDS, line_mesh
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise ModelError(f"folder {folder} does not exist; create it first", path)
+    tmp = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.tmp")
+    try:
+        with h5py.File(tmp, "w") as h:
+            h.attrs.update(format=FORMAT, format_version=FORMAT_VERSION,
+                           cranefe_version=__version__,
+                           command=" ".join(command if command is not None else sys.argv),
+                           created=datetime.datetime.now(datetime.timezone.utc).isoformat(
+                               timespec="seconds"))
+            g = h.create_group("model")
+            g.attrs.update(name=model.name, file=model.file, planar=model.planar,
+                           scene=model.scene or "")
+            g.create_dataset("yaml", data=model.text, dtype=h5py.string_dtype())
+            _dataset(g, "node_names", np.array(model.node_names, dtype=str))
+            for k in ("coords", "ground", "gravity"):
+                _dataset(g, k, getattr(model, k))
+            mesh = line_mesh(model)
+            mg = g.create_group("mesh")
+            mg.attrs["kinds"] = json.dumps(KINDS)
+            _dataset(mg, "points", mesh.points)
+            _dataset(mg, "point_names", np.array(mesh.point_names, dtype=str))
+            _dataset(mg, "lines", mesh.lines)
+            _dataset(mg, "kind", mesh.kind)
+            _dataset(mg, "element", np.array(mesh.element, dtype=str))
+            e = h.create_group("effects")
+            e.attrs.update(model.effects.as_dict() if system is None
+                           else system.effects.as_dict())
+            if system is not None:
+                d = h.create_group("dofs")
+                _dataset(d, "labels", np.array(system.dofs.labels, dtype=str))
+                _dataset(d, "kinds", np.array(system.dofs.kinds, dtype=str))
+                m = h.create_group("matrices")
+                _write_csr(m.create_group("K"), system.K)
+                _write_csr(m.create_group("M"), system.M)
+                _dataset(m, "f", system.f)
+            r = h.create_group("results")
+            for name, obj in (results or {}).items():
+                _write_dataclass(r.create_group(name), obj)
+            t = h.create_group("timings")
+            t.attrs.update({k: float(v) for k, v in (timings or {}).items()})
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+    return path
+
+
+def read(path):
+    """Read an archive back into an `Archive` (results as their dataclasses)."""
+    import h5py
+
+    from .mesh import LineMesh
+    path = os.fspath(path)
+    try:
+        h = h5py.File(path, "r")
+    except FileNotFoundError:
+        raise ModelError("file not found", path) from None
+    except OSError as exc:
+        raise ModelError(f"not an HDF5 file ({exc})", path) from None
+    with h:
+        if h.attrs.get("format") != FORMAT:
+            raise ModelError("not a cranefe archive (no format attribute)", path)
+        if h.attrs["format_version"] > FORMAT_VERSION:
+            raise ModelError(f"archive format {h.attrs['format_version']} is newer than "
+                             f"this cranefe reads ({FORMAT_VERSION}); update cranefe", path)
+        meta = _attrs(h.attrs)
+        g = h["model"]
+        model = _attrs(g.attrs)
+        model["yaml"] = g["yaml"].asstr()[()]
+        model["node_names"] = tuple(g["node_names"].asstr()[()])
+        for k in ("coords", "ground", "gravity"):
+            model[k] = g[k][()]
+        mg = g["mesh"]
+        mesh = LineMesh(mg["points"][()], tuple(mg["point_names"].asstr()[()]),
+                        mg["lines"][()], mg["kind"][()], tuple(mg["element"].asstr()[()]))
+        arc = Archive(path, meta, model, mesh, _attrs(h["effects"].attrs), ())
+        if "dofs" in h:
+            arc.labels = tuple(h["dofs/labels"].asstr()[()])
+            arc.K = _read_csr(h["matrices/K"])
+            arc.M = _read_csr(h["matrices/M"])
+            arc.f = h["matrices/f"][()]
+        arc.results = {k: _read_dataclass(v) for k, v in h["results"].items()}
+        arc.meta["timings"] = _attrs(h["timings"].attrs)
+    return arc

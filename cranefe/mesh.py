@@ -1,0 +1,60 @@
+"""The crane as a line mesh: points (nodes and body centres of mass) and line cells
+(rope spans, body edges, springs, members, linear drives), with mode displacements at
+every point. Used by the VTU/XDMF writers, the images and the archive."""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+KINDS = ("rope", "body", "spring", "member", "drive")
+
+
+@dataclass(frozen=True)
+class LineMesh:
+    points: np.ndarray        # (np, 3): the model's nodes, then one point per body com
+    point_names: tuple        # (np,)
+    lines: np.ndarray         # (nl, 2) point indices
+    kind: np.ndarray          # (nl,) index into KINDS
+    element: tuple            # (nl,) "rope hoist", "body jib", ...
+
+
+def line_mesh(model):
+    nn = len(model.node_names)
+    points = [model.coords] + [b.com[None] for b in model.bodies]
+    names = list(model.node_names) + [f"{b.name} (com)" for b in model.bodies]
+    lines, kind, element = [], [], []
+
+    def add(a, b, k, name):
+        if a != b:
+            lines.append((a, b))
+            kind.append(KINDS.index(k))
+            element.append(name)
+
+    for r in model.ropes:
+        for a, b in sorted({tuple(sorted(p)) for p in zip(r.span_a, r.span_b)}):
+            add(int(a), int(b), "rope", f"rope {r.name}")
+    for k, body in enumerate(model.bodies):
+        for i in body.nodes:        # a star from the centre of mass to each node
+            add(nn + k, int(i), "body", f"body {body.name}")
+    for s in model.springs:
+        if s.type == "axial":
+            add(*s.nodes, "spring", f"spring {s.name}")
+    for m in model.members:
+        for a, b in zip(m.nodes[:-1], m.nodes[1:]):
+            add(a, b, "member", f"member {m.name}")
+    for d in model.linear_drives:
+        add(*d.nodes, "drive", f"drive {d.name}")
+    return LineMesh(np.vstack(points), tuple(names),
+                    np.array(lines, dtype=int).reshape(-1, 2), np.array(kind, dtype=int),
+                    tuple(element))
+
+
+def point_displacements(dofs, shapes):
+    """(m, np, 3) displacements of the mesh points for q-space shapes (n, m)."""
+    layout = dofs.layout
+    nodes = dofs.T[:3 * layout.n_nodes] @ shapes
+    body_rows = (layout.body0 + 6 * np.arange(layout.n_bodies)[:, None]
+                 + np.arange(3)).ravel()
+    coms = dofs.T[body_rows] @ shapes
+    m = shapes.shape[1]
+    return np.concatenate([nodes.T.reshape(m, -1, 3), coms.T.reshape(m, -1, 3)], axis=1)

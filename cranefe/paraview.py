@@ -1,0 +1,96 @@
+"""ParaView files written with meshio: VTU (every mode as point data) and XDMF time
+series (one step per mode, or per output time of a transient). Both are written to a
+temporary name in the target folder and renamed, so a failed write loses nothing."""
+
+import os
+import shutil
+import tempfile
+
+import numpy as np
+
+from .errors import ModelError
+from .mesh import KINDS, line_mesh, point_displacements
+
+
+def _target(path):
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise ModelError(f"folder {folder} does not exist; create it first", path)
+    return path, folder
+
+
+def _mesh_and_fields(model, dofs, result):
+    mesh = line_mesh(model)
+    disp = point_displacements(dofs, result.shapes)
+    names = [f"mode_{k + 1}_{f:.6g}Hz" for k, f in enumerate(result.frequency_hz)]
+    return mesh, disp, names
+
+
+def _cell_data(mesh):
+    elements = sorted(set(mesh.element))
+    return {"kind": [mesh.kind], "element_id": [np.array(
+        [elements.index(e) for e in mesh.element], dtype=int)]}
+
+
+def write_vtu(path, model, dofs, result):
+    """A line mesh of the crane with one displacement array per mode (mass-normalised)."""
+    import meshio
+    path, folder = _target(path)
+    mesh, disp, names = _mesh_and_fields(model, dofs, result)
+    point_data = {n: d for n, d in zip(names, disp)}
+    point_data["magnitude_mode_1"] = np.linalg.norm(disp[0], axis=1) if len(disp) else \
+        np.zeros(len(mesh.points))
+    m = meshio.Mesh(mesh.points, [("line", mesh.lines)], point_data=point_data,
+                    cell_data=_cell_data(mesh))
+    tmp = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.tmp.vtu")
+    try:
+        meshio.write(tmp, m, file_format="vtu")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    return path
+
+
+def write_xdmf_series(path, model, dofs, times, fields):
+    """XDMF time series: fields is a dict name -> (nt, np, 3 or 1) arrays over `times`.
+
+    meshio's TimeSeriesWriter puts its heavy data in BASE.h5 in the current directory;
+    it writes in a temporary folder, the data file is renamed BASE.xdmf.h5 (so it never
+    overwrites an archive BASE.h5) and both are moved next to `path` at the end.
+    """
+    import meshio
+    path, folder = _target(path)
+    mesh = line_mesh(model)
+    base = os.path.splitext(os.path.basename(path))[0]
+    tmpdir = tempfile.mkdtemp(dir=folder, prefix=".xdmf-")
+    cwd = os.getcwd()
+    try:
+        os.chdir(tmpdir)
+        with meshio.xdmf.TimeSeriesWriter(f"{base}.xdmf") as w:
+            w.write_points_cells(mesh.points, [("line", mesh.lines)])
+            for k, t in enumerate(times):
+                w.write_data(float(t), point_data={n: v[k] for n, v in fields.items()})
+        os.chdir(cwd)
+        xdmf = os.path.join(tmpdir, f"{base}.xdmf")
+        with open(xdmf) as fh:
+            text = fh.read().replace(f">{base}.h5:", f">{base}.xdmf.h5:")
+        with open(xdmf, "w") as fh:
+            fh.write(text)
+        os.replace(os.path.join(tmpdir, f"{base}.h5"), os.path.join(folder, f"{base}.xdmf.h5"))
+        os.replace(xdmf, path)
+    finally:
+        os.chdir(cwd)
+        shutil.rmtree(tmpdir, ignore_errors=True)
+    return path
+
+
+def write_xdmf_modes(path, model, dofs, result):
+    """Modes as an XDMF series: step k (time = k) is mode k, field 'displacement'."""
+    disp = point_displacements(dofs, result.shapes)
+    return write_xdmf_series(path, model, dofs, np.arange(1, len(disp) + 1),
+                             {"displacement": disp})
+
+
+__all__ = ["write_vtu", "write_xdmf_series", "write_xdmf_modes", "KINDS"]
