@@ -10,7 +10,7 @@ import sys
 from .. import __version__
 from ..errors import AnalysisError, ModelError
 
-COMMANDS = ("modes", "check", "study")
+COMMANDS = ("modes", "check", "show", "study")
 
 
 def _parser():
@@ -34,6 +34,7 @@ def _module(name):
 def main(argv=None):
     parser = _parser()
     args = parser.parse_args(argv)
+    args.argv = list(argv) if argv is not None else sys.argv[1:]
     if not args.command:
         parser.print_help()
         return 2
