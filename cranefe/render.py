@@ -97,7 +97,7 @@ def _scene(plotter, model, mesh, disp, scale, clim):
         plotter.add_mesh(d, scalars="displacement", cmap="viridis", clim=clim,
                          line_width=width, render_lines_as_tubes=name != "rope",
                          show_scalar_bar=bool(kind == mesh.kind.min()),
-                         scalar_bar_args={"title": "displacement (scaled) [m]",
+                         scalar_bar_args={"title": "|u| scaled [m]",
                                           "vertical": True, "position_x": 0.86,
                                           "position_y": 0.1, "height": 0.6,
                                           "color": "black"})

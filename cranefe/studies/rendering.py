@@ -1,0 +1,68 @@
+"""What images cost: `cranefe modes` of the tower crane with and without --images."""
+
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+DESCRIPTION = "time of rendering the tower crane's mode images vs. the modes alone"
+MODEL = os.path.join(os.path.dirname(__file__), "..", "..", "models",
+                     "hammerhead_tower_crane.yaml")
+
+
+def _wall(args, repeat):
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "cranefe", *args], check=True,
+                       capture_output=True)
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def run(outdir, quick=False):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    model = os.path.abspath(MODEL)
+    repeat = 1 if quick else 3
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        rows.append(("modes only (whole process)", _wall(["modes", model], repeat), 0))
+        for n in ((1,) if quick else (1, 4, 7)):
+            t = _wall(["modes", model, "--count", str(n), "--images",
+                       os.path.join(tmp, f"i{n}")], repeat)
+            rows.append((f"modes + {n} images (whole process)", t, n))
+        # in one process: the first image pays the back-end probe and the pyvista import
+        from ..assemble import assemble
+        from ..model import load
+        from ..modal import modes
+        from ..render import render_modes
+        m = load(model)
+        s = assemble(m)
+        r = modes(m, system=s)
+        t0 = time.perf_counter()
+        render_modes(os.path.join(tmp, "a"), m, s.dofs, r)
+        t_all = time.perf_counter() - t0
+        rows.append((f"{len(r.omega)} images in one process, first call", t_all, len(r.omega)))
+        t0 = time.perf_counter()
+        render_modes(os.path.join(tmp, "b"), m, s.dofs, r)
+        t_warm = time.perf_counter() - t0
+        rows.append((f"{len(r.omega)} images in one process, warm", t_warm, len(r.omega)))
+    csv_path = os.path.join(outdir, "rendering.csv")
+    with open(csv_path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["case", "wall_time_s", "images"])
+        for case, t, n in rows:
+            w.writerow([case, f"{t:.4f}", n])
+    fig, ax = plt.subplots(figsize=(8, 3.5))
+    ax.barh([r[0] for r in rows][::-1], [r[1] for r in rows][::-1], color="#4c72b0")
+    ax.set_xlabel("wall time [s] (best of %d)" % repeat)
+    ax.set_title("Hammerhead tower crane: cost of mode images (off-screen pyvista)")
+    fig.tight_layout()
+    png = os.path.join(outdir, "rendering.png")
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    return [csv_path, png]
