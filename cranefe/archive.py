@@ -153,7 +153,7 @@ def write(path, model, system=None, results=None, command=None, timings=None):
             _dataset(g, "node_names", np.array(model.node_names, dtype=str))
             for k in ("coords", "ground", "gravity"):
                 _dataset(g, k, getattr(model, k))
-            mesh = line_mesh(model)
+            mesh = line_mesh(model, system.dofs if system is not None else None)
             mg = g.create_group("mesh")
             mg.attrs["kinds"] = json.dumps(KINDS)
             _dataset(mg, "points", mesh.points)

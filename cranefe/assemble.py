@@ -28,6 +28,8 @@ class SpringRows:
     psi: np.ndarray           # (ne,) absorption coefficient
     names: tuple              # (ne,) "rope hoist", "spring tower_bend", ...
     length: np.ndarray        # (ne,) deformable length (ropes, axial springs), else nan
+    rope: np.ndarray          # (ne,) index of the rope a row belongs to, else -1
+    spring: np.ndarray        # (ne,) index of the spring a row is, else -1
 
 
 @dataclass(frozen=True)
@@ -53,14 +55,17 @@ def _coo(rows, cols, vals, shape):
                          shape=shape).tocsr()
 
 
-def rope_rows(model, layout):
+def rope_rows(model, layout, which=None):
     """Massless ropes: one elongation row per rope over its whole path (seed eq. 2-3).
 
-    Returns (R (nr, n_primitive), deformable lengths L (nr,)). A drum at an end hauls in
-    ``radius * rotation``: coefficient -radius on the drum's rotation.
+    Returns (R (len(which), n_primitive), deformable lengths L): rows for the ropes
+    `which` (default all). A drum at an end hauls in ``radius * rotation``, which
+    stretches the rope: coefficient +radius on the drum's rotation.
     """
+    which = range(len(model.ropes)) if which is None else which
     rows, cols, vals, lengths = [], [], [], []
-    for k, r in enumerate(model.ropes):
+    for k, ri in enumerate(which):
+        r = model.ropes[ri]
         e, l = span_geometry(model.coords, r.span_a, r.span_b)
         c, v = elongation_rows(e, r.falls.astype(float), layout.node(r.span_a),
                                layout.node(r.span_b))
@@ -70,18 +75,41 @@ def rope_rows(model, layout):
         for d in r.end_drums:
             rows.append([k])
             cols.append([layout.drum(d)])
-            vals.append([-model.drums[d].radius])
+            vals.append([model.drums[d].radius])
         lengths.append(float(r.falls @ l) + r.extra_length)
-    return _coo(rows, cols, vals, (len(model.ropes), layout.size)), np.array(lengths)
+    return _coo(rows, cols, vals, (len(which), layout.size)), np.array(lengths)
 
 
-def spring_rows(model, layout):
-    """Rows of ropes, axial springs and rotational springs, with stiffness and psi."""
-    R_rope, L = rope_rows(model, layout)
-    c = [r.EA / l for r, l in zip(model.ropes, L)]
-    psi = [r.psi for r in model.ropes]
-    names = [f"rope {r.name}" for r in model.ropes]
+def spring_rows(model, layout, ropes_fe=None):
+    """Rows of ropes, axial springs and rotational springs, with stiffness and psi.
+
+    A massless rope is one row over its whole reeving (stiffness EA / L); a rope with
+    mass (`ropes_fe`, a RopeMesh) contributes one row per element (EA / l_e).
+    """
+    fe = set(ropes_fe.ropes) if ropes_fe is not None else set()
+    massless = [k for k in range(len(model.ropes)) if k not in fe]
+    R_rope, L = rope_rows(model, layout, massless)
+    blocks = [R_rope]
+    c = [model.ropes[k].EA / l for k, l in zip(massless, L)]
+    psi = [model.ropes[k].psi for k in massless]
+    names = [f"rope {model.ropes[k].name}" for k in massless]
     lengths = list(L)
+    rope_of = list(massless)
+    if fe:
+        from .ropes import endpoint_maps
+        rm = ropes_fe
+        dofs, B = endpoint_maps(rm, layout)
+        # elongation e . (u_end - u_start) of each element
+        v = np.einsum("ki,kij->kj", rm.e, B[:, 3:] - B[:, :3])
+        ne = len(rm.length)
+        blocks.append(_coo([np.repeat(np.arange(ne), 8)], [dofs.ravel()], [v.ravel()],
+                           (ne, layout.size)))
+        c += list(rm.EA / rm.length)
+        psi += [model.ropes[k].psi for k in rm.rope]
+        names += [f"rope {model.ropes[k].name}" for k in rm.rope]
+        lengths += list(rm.length)
+        rope_of += list(rm.rope)
+    n_rope_rows = len(c)
     rows, cols, vals = [], [], []
     for k, s in enumerate(model.springs):
         if s.type == "axial":
@@ -102,12 +130,15 @@ def spring_rows(model, layout):
         c.append(s.stiffness)
         psi.append(s.psi)
         names.append(f"spring {s.name}")
-    R_spring = _coo(rows, cols, vals, (len(model.springs), layout.size))
-    return SpringRows(sp.vstack([R_rope, R_spring]).tocsr(), np.array(c, dtype=float),
-                      np.array(psi, dtype=float), tuple(names), np.array(lengths))
+    blocks.append(_coo(rows, cols, vals, (len(model.springs), layout.size)))
+    ns = len(model.springs)
+    return SpringRows(sp.vstack(blocks).tocsr(), np.array(c, dtype=float),
+                      np.array(psi, dtype=float), tuple(names), np.array(lengths),
+                      np.array(rope_of + [-1] * ns, dtype=int),
+                      np.concatenate([-np.ones(n_rope_rows, dtype=int), np.arange(ns)]))
 
 
-def mass_and_gravity(model, dofs):
+def mass_and_gravity(model, dofs, effects):
     """Primitive inertia matrix, gravity forces, and the weights bodies carry.
 
     Returns (M (n_u, n_u), f (n_u,), gravity_points): gravity_points lists
@@ -180,6 +211,19 @@ def mass_and_gravity(model, dofs):
     for d, drum in enumerate(model.drums):
         block([layout.drum(d)], [[drum.reduced_inertia]])
 
+    rm = dofs.ropes
+    if rm is not None:          # rope elements: B^T M6 B on their end maps
+        from .elements import rope_mass
+        from .ropes import endpoint_maps
+        idx, B = endpoint_maps(rm, layout)
+        M6 = rope_mass(rm.mu, rm.length, lumped=effects.rope_mass_matrix == "lumped")
+        Me = np.einsum("kai,kab,kbj->kij", B, M6, B)
+        rows.append(np.repeat(idx, 8, axis=1).ravel())
+        cols.append(np.tile(idx, (1, 8)).ravel())
+        vals.append(Me.ravel())
+        g2 = np.tile(model.gravity, 2)
+        np.add.at(f, idx, np.einsum("kai,kab,b->ki", B, M6, g2))
+
     for ld in model.linear_drives:      # rotor turns i/R rad per metre of stroke (eq. 14)
         a, c = ld.nodes
         e, _ = span_geometry(model.coords, np.array([a]), np.array([c]))
@@ -199,7 +243,7 @@ def geometric_stiffness(model, dofs, static):
     layout = dofs.layout
     idx_list, blocks = [], []
     for a, b, falls, N in static.spans():
-        e, l = span_geometry(model.coords, a, b)
+        e, l = span_geometry(dofs.coords, a, b)
         idx_list.append(np.hstack([layout.node(a), layout.node(b)]))
         blocks.append(string_stiffness(N, falls, e, l))
     first_body = {}
@@ -243,22 +287,18 @@ def assemble(model, effects=None):
     import time
     t0 = time.perf_counter()
     effects = effects or model.effects
-    if effects.rope_mass > 0 and any(r.mass_per_length > 0 for r in model.ropes):
-        raise ModelError("rope_mass > 0 (finite-element ropes) is not available in this "
-                         "version; set effects: {rope_mass: 0}", model.file,
-                         "effects.rope_mass")
     if effects.structure == "flexible" and model.members:
         raise ModelError("structure: flexible (members as finite elements) is not "
                          "available in this version; set effects: {structure: rigid}",
                          model.file, "effects.structure")
     dofs = build_dofs(model, effects)
-    springs = spring_rows(model, dofs.layout)
+    springs = spring_rows(model, dofs.layout, dofs.ropes)
     K_u = springs.R.T @ sp.diags(springs.c) @ springs.R
-    M_u, f_u, _ = mass_and_gravity(model, dofs)
+    M_u, f_u, _ = mass_and_gravity(model, dofs, effects)
     static, Pg = None, None
     if effects.sway:
         from .statics import solve_static
-        static = solve_static(model)
+        static = solve_static(model, effects)
         Kg, Pg = geometric_stiffness(model, dofs, static)
         K_u = K_u + Kg
     T = dofs.T

@@ -17,7 +17,8 @@ import scipy.linalg as sla
 
 from .errors import ModelError
 
-DENSE_MAX = 1500       # up to this many coordinates the dense path is used
+DENSE_MAX = 1500       # up to this many coordinates the dense eigen-solution is used
+STATIC_DENSE_MAX = 400  # up to this many, statics finds its null space densely
 NULL_TOL = 1e-10       # relative eigenvalue of the unit-scaled pattern matrix
 
 

@@ -35,9 +35,10 @@ COMP_NAMES = ("ux", "uy", "uz", "rx", "ry", "rz")
 class Layout:
     """Primitive coordinate offsets."""
 
-    n_nodes: int
+    n_nodes: int             # model nodes, then interior rope nodes
     n_bodies: int
     n_drums: int
+    n_slips: int = 0         # rope slip coordinates (sheave passes of ropes with mass)
 
     @property
     def body0(self):
@@ -49,7 +50,7 @@ class Layout:
 
     @property
     def size(self):
-        return self.drum0 + self.n_drums
+        return self.drum0 + self.n_drums + self.n_slips
 
     def node(self, i):
         """(k, 3) translation indices of nodes i."""
@@ -60,6 +61,9 @@ class Layout:
 
     def drum(self, d):
         return self.drum0 + np.asarray(d)
+
+    def slip(self, k):
+        return self.drum0 + self.n_drums + np.asarray(k)
 
 
 @dataclass(frozen=True)
@@ -77,6 +81,8 @@ class DofMap:
     group_q: np.ndarray       # (ng, 6) q_map index of each of the 6 components, -1 absent
     carrier: np.ndarray       # (nn,) group carrying each node, GROUND, or -2 = own DOFs
     constraints: tuple        # ConstraintRows used in T_c
+    coords: np.ndarray        # (nn, 3) model nodes, then interior rope nodes
+    ropes: object = None      # cranefe.ropes.RopeMesh when rope mass is on
 
     @property
     def n(self):
@@ -165,8 +171,14 @@ def build_dofs(model, effects=None):
     """The generalised coordinates of `model` for `effects` (default: the model's)."""
     effects = effects or model.effects
     planar = model.planar
+    rm = None
+    if effects.rope_mass > 0:
+        from .ropes import discretize
+        rm = discretize(model, effects.rope_mass)
+    n_int, n_slip = (rm.n_interior, rm.n_slips) if rm else (0, 0)
     nn, nb, nd = len(model.node_names), len(model.bodies), len(model.drums)
-    layout = Layout(nn, nb, nd)
+    layout = Layout(nn + n_int, nb, nd, n_slip)
+    coords = np.vstack([model.coords, rm.coords]) if rm else model.coords
     comps = PLANAR_COMPONENTS if planar else tuple(range(6))
     group_of_body, ng = _groups(model)
 
@@ -196,8 +208,8 @@ def build_dofs(model, effects=None):
         group_ref[g] = group_ref[g] / gmass[g] if gmass[g] > 0 \
             else np.vstack(gnodes[g]).mean(axis=0)
 
-    # carrier of every node
-    carrier = np.full(nn, -2, dtype=int)
+    # carrier of every node (interior rope nodes are free)
+    carrier = np.full(nn + n_int, -2, dtype=int)
     carrier[model.ground] = GROUND
     for b, body in enumerate(model.bodies):
         for i in body.nodes:
@@ -244,10 +256,14 @@ def build_dofs(model, effects=None):
     # free nodes: only those something acts on get coordinates
     dirs = elastic_directions(model, effects)
     active = set(dirs) | set(model.masses.nodes.tolist()) | {d.node for d in model.drums}
+    node_names = list(model.node_names) + ([f"rope {n}" for n in rm.names] if rm else [])
     for i in np.flatnonzero(carrier == -2):
-        if i not in active:
+        if i >= nn:                        # interior rope node: along its fall without sway
+            basis = _basis(np.eye(3) if effects.sway else rm.direction[i - nn][None],
+                           planar)
+        elif i not in active:
             continue
-        if effects.sway:
+        elif effects.sway:
             basis = _basis(np.eye(3), planar)
         elif i in dirs:
             basis = _basis(dirs[i], planar)
@@ -261,7 +277,7 @@ def build_dofs(model, effects=None):
             vals.append(v[nz])
             axis = np.flatnonzero(np.abs(np.abs(v) - 1) < 1e-12)
             name = AXES[axis[0]] if len(axis) else f"d{k + 1}"
-            labels.append(f"node {model.node_names[i]} {name}")
+            labels.append(f"node {node_names[i]} {name}")
             kinds.append("node")
 
     for d, drum in enumerate(model.drums):
@@ -271,6 +287,13 @@ def build_dofs(model, effects=None):
             vals.append([1.0])
             labels.append(f"drum {drum.name}")
             kinds.append("drum")
+
+    for k, name in enumerate(rm.slip_names if rm else ()):
+        rows.append([layout.slip(k)])
+        cols.append([len(labels)])
+        vals.append([1.0])
+        labels.append(name)
+        kinds.append("slip")
 
     n_map = len(labels)
     T_map = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
@@ -284,7 +307,7 @@ def build_dofs(model, effects=None):
     T_c, keep = _eliminate(constraints, n_map, rotation, model.length_scale)
     return DofMap(layout, (T_map @ T_c).tocsr(), T_map, T_c,
                   tuple(labels[i] for i in keep), tuple(kinds[i] for i in keep),
-                  group_of_body, group_ref, group_q, carrier, tuple(constraints))
+                  group_of_body, group_ref, group_q, carrier, tuple(constraints), coords, rm)
 
 
 def _constraint_rows(model, effects, layout, T_map, group_of_body, group_q, group_ref,
@@ -340,6 +363,11 @@ def _constraint_rows(model, effects, layout, T_map, group_of_body, group_q, grou
         out.append(ConstraintRows(f"linear drive {d.name}", ("drive", k),
                                   (row @ T_map)[None], (), None, np.zeros((1, 3))))
     if not effects.rope_elasticity:
+        if effects.rope_mass > 0:
+            from .errors import ModelError
+            raise ModelError("inextensible ropes (rope_elasticity: false) cannot carry "
+                             "rope mass elements; set rope_mass: 0", model.file,
+                             "effects.rope_elasticity")
         from .assemble import rope_rows
         R, _ = rope_rows(model, layout)
         RT = (R @ T_map).toarray()

@@ -65,3 +65,15 @@ def rigid_mass(mass, inertia):
     out[:, :3, :3] = mass[:, None, None] * np.eye(3)
     out[:, 3:, 3:] = inertia
     return out
+
+
+def rope_mass(mu, length, lumped=False):
+    """Mass of two-node rope elements on [u_start; u_end] (3 + 3 translations), (ne, 6, 6).
+
+    Consistent (linear shape functions): mu l / 6 [[2 I, I], [I, 2 I]];
+    lumped: mu l / 2 at each end.
+    """
+    m = (mu * length)[:, None, None]
+    if lumped:
+        return m / 2 * np.eye(6)
+    return m / 6 * np.kron(np.array([[2.0, 1.0], [1.0, 2.0]]), np.eye(3))

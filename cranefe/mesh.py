@@ -18,10 +18,15 @@ class LineMesh:
     element: tuple            # (nl,) "rope hoist", "body jib", ...
 
 
-def line_mesh(model):
-    nn = len(model.node_names)
-    points = [model.coords] + [b.com[None] for b in model.bodies]
-    names = list(model.node_names) + [f"{b.name} (com)" for b in model.bodies]
+def line_mesh(model, dofs=None):
+    """The line mesh; with `dofs` of a model with rope mass, ropes run through their
+    interior nodes (which follow the model's nodes in the point list)."""
+    rm = dofs.ropes if dofs is not None else None
+    interior = rm.coords if rm is not None else np.zeros((0, 3))
+    nn = len(model.node_names) + len(interior)
+    points = [model.coords, interior] + [b.com[None] for b in model.bodies]
+    names = list(model.node_names) + (list(rm.names) if rm is not None else []) + \
+        [f"{b.name} (com)" for b in model.bodies]
     lines, kind, element = [], [], []
 
     def add(a, b, k, name):
@@ -30,8 +35,11 @@ def line_mesh(model):
             kind.append(KINDS.index(k))
             element.append(name)
 
-    for r in model.ropes:
-        for a, b in sorted({tuple(sorted(p)) for p in zip(r.span_a, r.span_b)}):
+    fe = set(rm.ropes) if rm is not None else set()
+    for k, r in enumerate(model.ropes):
+        pairs = zip(rm.node[rm.rope == k, 0], rm.node[rm.rope == k, 1]) if k in fe \
+            else zip(r.span_a, r.span_b)
+        for a, b in sorted({tuple(sorted(p)) for p in pairs}):
             add(int(a), int(b), "rope", f"rope {r.name}")
     for k, body in enumerate(model.bodies):
         for i in body.nodes:        # a star from the centre of mass to each node

@@ -21,7 +21,7 @@ def _target(path):
 
 
 def _mesh_and_fields(model, dofs, result):
-    mesh = line_mesh(model)
+    mesh = line_mesh(model, dofs)
     disp = point_displacements(dofs, result.shapes)
     names = [f"mode_{k + 1}_{f:.6g}Hz" for k, f in enumerate(result.frequency_hz)]
     return mesh, disp, names
@@ -62,7 +62,7 @@ def write_xdmf_series(path, model, dofs, times, fields):
     """
     import meshio
     path, folder = _target(path)
-    mesh = line_mesh(model)
+    mesh = line_mesh(model, dofs)
     base = os.path.splitext(os.path.basename(path))[0]
     tmpdir = tempfile.mkdtemp(dir=folder, prefix=".xdmf-")
     cwd = os.getcwd()

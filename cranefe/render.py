@@ -118,7 +118,7 @@ def render_modes(folder, model, dofs, result, size=(1024, 768), animate=False, f
     backend()
     import pyvista as pv
     os.makedirs(folder, exist_ok=True)
-    mesh = line_mesh(model)
+    mesh = line_mesh(model, dofs)
     disp = point_displacements(dofs, result.shapes)
     paths = []
     for k in range(len(disp)):

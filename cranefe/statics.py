@@ -13,7 +13,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .assemble import mass_and_gravity, spring_rows, _pattern
-from .condense import DENSE_MAX, null_space
+from .condense import STATIC_DENSE_MAX, null_space
 from .dofs import build_dofs
 from .elements import span_geometry
 from .errors import AnalysisError, ModelError
@@ -24,25 +24,42 @@ from .model import GROUND
 class StaticState:
     model: object
     u: np.ndarray              # (n_primitive,) static displacement from the unstressed state
-    element_force: np.ndarray  # (ne,) rope tension / spring force / spring moment
-    element_names: tuple
+    element_force: np.ndarray  # (ne,) per spring row: rope tension / spring force / moment
+    springs: object            # the SpringRows the forces belong to
+    ropes_fe: object           # RopeMesh of ropes with mass, or None
     drive_force: np.ndarray    # (nld,) axial force of linear drives (tension positive)
     node_force: np.ndarray     # (nn, 3) force of elements and drives on each node
     joint_forces: tuple        # (g1, g2, point, F): F acts on g1, -F on g2
     gravity_points: tuple      # (body, point, force) of every weight a body carries
 
     @property
+    def element_names(self):
+        return self.springs.names
+
     def rope_tension(self):
-        return self.element_force[:len(self.model.ropes)]
+        """(nr, 2): smallest and largest static tension of each rope."""
+        out = np.full((len(self.model.ropes), 2), np.nan)
+        for k in range(len(self.model.ropes)):
+            S = self.element_force[self.springs.rope == k]
+            out[k] = S.min(), S.max()
+        return out
 
     def spans(self):
-        """(a, b, falls, N) of every straight tension-carrying span."""
-        m = self.model
-        for r, S in zip(m.ropes, self.rope_tension):
-            yield r.span_a, r.span_b, r.falls.astype(float), np.full(len(r.falls), S)
-        k = len(m.ropes)
-        for s, N in zip(m.springs, self.element_force[k:]):
+        """(a, b, falls, N) of every straight tension-carrying span (node indices)."""
+        m, sp_ = self.model, self.springs
+        fe = set(self.ropes_fe.ropes) if self.ropes_fe is not None else set()
+        for k, r in enumerate(m.ropes):
+            if k not in fe:
+                S = self.element_force[sp_.rope == k][0]
+                yield r.span_a, r.span_b, r.falls.astype(float), np.full(len(r.falls), S)
+        if fe:
+            rm = self.ropes_fe
+            S = self.element_force[np.isin(sp_.rope, list(fe))]
+            span = rm.fall >= 0            # not the massless extra-length pieces
+            yield rm.node[span, 0], rm.node[span, 1], np.ones(span.sum()), S[span]
+        for k, s in enumerate(m.springs):
             if s.type == "axial":
+                N = self.element_force[sp_.spring == k][0]
                 yield np.array(s.nodes[:1]), np.array(s.nodes[1:]), np.ones(1), np.array([N])
         for d, N in zip(m.linear_drives, self.drive_force):
             yield np.array(d.nodes[:1]), np.array(d.nodes[1:]), np.ones(1), np.array([N])
@@ -69,14 +86,20 @@ class StaticState:
             yield g, np.array(p), np.array(F)
 
 
-def solve_static(model):
-    """Linear static solution under gravity, drums held, elastic stiffness only."""
-    effects = replace(model.effects, sway=False, drive="held", rope_elasticity=True)
+def solve_static(model, effects=None):
+    """Linear static solution under gravity, drums held, elastic stiffness only.
+
+    Interior nodes of ropes with mass move only along their falls here, so a span's own
+    weight loads it along the rope (tension varying with height); its lateral weight,
+    which makes a real span sag, is not in the straight reference geometry.
+    """
+    effects = replace(effects or model.effects, sway=False, drive="held",
+                      rope_elasticity=True)
     dofs = build_dofs(model, effects)
     layout = dofs.layout
-    springs = spring_rows(model, layout)
+    springs = spring_rows(model, layout, dofs.ropes)
     K_u = (springs.R.T @ sp.diags(springs.c) @ springs.R).tocsr()
-    _, f_u, gravity_points = mass_and_gravity(model, dofs)
+    _, f_u, gravity_points = mass_and_gravity(model, dofs, effects)
     T = dofs.T
     K = (T.T @ K_u @ T).tocsr()
     f = T.T @ f_u
@@ -84,10 +107,8 @@ def solve_static(model):
     u = T @ q
     element_force = springs.c * (springs.R @ u)
     nn = layout.n_nodes
+    # point masses on bodies are in gravity_points, not in f_u's node rows
     node_force = (f_u[:3 * nn] - (K_u @ u)[:3 * nn]).reshape(nn, 3)
-    # point masses on bodies are in gravity_points; keep node_force to element forces there
-    carried = dofs.carrier >= 0
-    node_force[carried] = -(K_u @ u)[:3 * nn].reshape(nn, 3)[carried]
 
     # reactions of constraints: G^T lam = K_map u_map - f_map
     joint_forces, drive_force = [], np.zeros(len(model.linear_drives))
@@ -109,9 +130,12 @@ def solve_static(model):
                 drive_force[i] = -lc[0]            # pushes C away from A: compression
                 node_force[cc] += lc[0] * e[0]
                 node_force[a] -= lc[0] * e[0]
-    _check_free_nodes(model, dofs, node_force)
-    return StaticState(model, u, element_force, springs.names, drive_force, node_force,
-                       tuple(joint_forces), tuple(gravity_points))
+    # size of the forces meeting at each node, for a relative equilibrium test
+    scale = np.abs(f_u[:3 * nn]) + abs(springs.R[:, :3 * nn]).T @ np.abs(element_force)
+    _check_free_nodes(model, dofs, node_force, f_u[:3 * nn].reshape(nn, 3),
+                      scale.reshape(nn, 3))
+    return StaticState(model, u, element_force, springs, dofs.ropes, drive_force,
+                       node_force, tuple(joint_forces), tuple(gravity_points))
 
 
 def _solve(K, f, P, dofs, model):
@@ -119,7 +143,7 @@ def _solve(K, f, P, dofs, model):
     n = K.shape[0]
     if n == 0:
         return np.zeros(0)
-    if n > DENSE_MAX:
+    if n > STATIC_DENSE_MAX:
         try:
             return spla.splu(K.tocsc()).solve(f)
         except RuntimeError as exc:
@@ -144,17 +168,14 @@ def _solve(K, f, P, dofs, model):
     return sla.solve(Kd, f, assume_a="sym")
 
 
-def _check_free_nodes(model, dofs, node_force):
-    """Free nodes must be in equilibrium in every direction, not only along their ropes."""
-    free = np.flatnonzero(dofs.carrier == -2)
-    if not len(free):
-        return
-    pm = dict(zip(model.masses.nodes.tolist(), model.masses.mass))
-    for i in free:
+def _check_free_nodes(model, dofs, node_force, weight_force, scale):
+    """Free model nodes must be in equilibrium in every direction, not only along their
+    ropes (interior rope nodes are exempt: see solve_static)."""
+    nn = len(model.node_names)
+    for i in np.flatnonzero(dofs.carrier[:nn] == -2):
         F = node_force[i]
-        weight = pm.get(int(i), 0.0) * np.linalg.norm(model.gravity)
-        scale = max(weight, 1e-300)
-        if np.linalg.norm(F) > 1e-6 * scale and weight > 0:
+        weight = np.linalg.norm(weight_force[i])
+        if weight > 0 and np.linalg.norm(F) > 1e-7 * np.linalg.norm(scale[i]):
             raise ModelError(
                 f"node '{model.node_names[i]}' is not in static equilibrium in the reference "
                 f"geometry: its ropes and springs cannot balance a force of "

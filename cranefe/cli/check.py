@@ -25,17 +25,28 @@ def run(args):
     sp = system.springs
     warnings = []
     elements = []
-    for k, name in enumerate(sp.names):
-        force = float(static.element_force[k])
-        e = {"name": name, "stiffness": float(sp.c[k]), "psi": float(sp.psi[k]),
-             "static_force": force}
-        if k < len(model.ropes):
-            r = model.ropes[k]
-            e.update(length_m=float(sp.length[k]), path=list(r.points),
-                     falls=int(r.falls.sum()))
-            if force <= 0:
-                warnings.append(f"{name} is slack in the static state ({force:.4g} N)")
+    tension = static.rope_tension()
+    for k, r in enumerate(model.ropes):
+        rows = np.flatnonzero(sp.rope == k)
+        e = {"name": f"rope {r.name}", "psi": r.psi, "path": list(r.points),
+             "falls": int(r.falls.sum()),
+             "length_m": float(sp.length[rows].sum() + (r.extra_length if len(rows) > 1
+                                                        else 0.0)),
+             "static_force": float(tension[k, 1]), "static_force_min": float(tension[k, 0])}
+        if len(rows) == 1:
+            e["stiffness"] = float(sp.c[rows[0]])
+        else:
+            e["elements"] = int(len(rows))
+            e["stiffness"] = float(r.EA / e["length_m"])
+        if tension[k, 0] <= 0:
+            warnings.append(f"rope {r.name} is slack in the static state "
+                            f"({tension[k, 0]:.4g} N)")
         elements.append(e)
+    for k, s in enumerate(model.springs):
+        row = int(np.flatnonzero(sp.spring == k)[0])
+        elements.append({"name": f"spring {s.name}", "stiffness": float(sp.c[row]),
+                         "psi": float(sp.psi[row]),
+                         "static_force": float(static.element_force[row])})
     qc, massless = [], []
     if system.K.shape[0] <= DENSE_MAX:
         c = condense(system)
@@ -67,8 +78,12 @@ def run(args):
     for e in elements:
         length = f"{e['length_m']:.4g}" if "length_m" in e else "-"
         unit = "N m/rad" if e["name"].startswith("spring") and "length_m" not in e else "N/m"
-        print(f"  {e['name']:<28} {length:>11} {e['stiffness']:>12.4g} "
-              f"{e['static_force']:>13.5g}  ({unit})")
+        force = f"{e['static_force']:>13.5g}"
+        if e.get("elements"):
+            force = f"{e['static_force_min']:.5g}..{e['static_force']:.5g}"
+            unit += f", {e['elements']} elements"
+        print(f"  {e['name']:<28} {length:>11} {e['stiffness']:>12.4g} {force:>13}"
+              f"  ({unit})")
         if "path" in e:
             print(f"    path: {' - '.join(e['path'])} ({e['falls']} rope parts)")
     for w in warnings:

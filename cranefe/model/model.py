@@ -15,6 +15,7 @@ EFFECT_CHOICES = {
     "drive": ("coupled", "held", "reduced"),
     "damping": ("none", "modal", "exact"),
     "structure": ("rigid", "flexible"),
+    "rope_mass_matrix": ("consistent", "lumped"),
 }
 
 
@@ -28,6 +29,7 @@ class Effects:
     drive: str = "coupled"
     damping: str = "none"
     structure: str = "rigid"
+    rope_mass_matrix: str = "consistent"   # extension: mass matrix of rope elements
 
     def as_dict(self):
         return {k: getattr(self, k) for k in self.__dataclass_fields__}
