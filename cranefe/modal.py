@@ -19,6 +19,8 @@ from .assemble import assemble
 from .condense import DENSE_MAX, condense, massless_split
 from .errors import AnalysisError
 
+SMALL = 300        # below this many coordinates the dense solution is the fastest
+
 
 @dataclass
 class ModalResult:
@@ -62,8 +64,8 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
     if n == 0:
         raise AnalysisError("the model has no degrees of freedom for these effects: "
                             "nothing moves")
-    if solver == "auto":
-        solver = "dense" if n <= DENSE_MAX else "sparse"
+    if solver == "auto":       # dense when small, or when all modes are wanted
+        solver = "dense" if n <= SMALL or (count is None and n <= DENSE_MAX) else "sparse"
     t1 = time.perf_counter()
     if solver == "dense":
         omega, shapes, rigid, qc, ml = _dense(system, count)
@@ -134,9 +136,12 @@ def _sparse(system, k):
     K, M = system.K.tocsc(), system.M.tocsc()
     a, b = massless_split(system.M)
     Ma = M[a][:, a]
-    # shift: a small fraction of the mean stiffness-to-mass ratio, negative
-    ratio = np.abs(K.diagonal()[a]).mean() / Ma.diagonal().mean()
-    sigma = -1e-6 * ratio
+    # shift: negative (K - sigma M is positive definite with quasi-cyclic motions) and
+    # small next to the lowest eigenvalue, bounded above by every Rayleigh quotient
+    # K_ii / M_ii; a shift near the mean ratio would blur the low modes together
+    ratio = K.diagonal()[a] / Ma.diagonal()
+    ratio = ratio[ratio > 0].min() if np.any(ratio > 0) else 1.0
+    sigma = -1e-3 * ratio
     lu = spla.splu((K - sigma * M).tocsc())
     n = K.shape[0]
 
