@@ -8,13 +8,14 @@ Everything is assembled in primitive coordinates and mapped once, ``K_q = T^T K_
 """
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 
 from .dofs import build_dofs
-from .elements import (elongation_rows, load_stiffness, rigid_mass, skew, span_geometry,
-                       string_stiffness)
+from .elements import (elongation_rows, load_stiffness, rigid_mass, rope_mass, skew,
+                       span_geometry, string_stiffness)
 from .errors import ModelError
 from .model import GROUND
 
@@ -30,6 +31,33 @@ class SpringRows:
     length: np.ndarray        # (ne,) deformable length (ropes, axial springs), else nan
     rope: np.ndarray          # (ne,) index of the rope a row belongs to, else -1
     spring: np.ndarray        # (ne,) index of the spring a row is, else -1
+    member: np.ndarray        # (ne,) index of the truss member element a row is, else -1
+
+
+@dataclass(frozen=True)
+class Blocks:
+    """Element matrices mat (ne, k, k) on primitive indices idx (ne, k)."""
+
+    idx: np.ndarray
+    mat: np.ndarray
+
+    def unit_abs(self):
+        """Each block replaced by its matrix absolute value V |L| V^T scaled to unit size."""
+        w, v = np.linalg.eigh(self.mat)
+        top = np.abs(w).max(axis=1)
+        scaled = np.abs(w) / np.where(top > 0, top, 1)[:, None]
+        return Blocks(self.idx, np.einsum("kij,kj,klj->kil", v, scaled, v))
+
+
+def sum_blocks(blocks, size):
+    """One COO assembly of several Blocks -> CSR (size, size)."""
+    rows, cols, vals = [], [], []
+    for b in blocks:
+        k = b.idx.shape[1]
+        rows.append(np.repeat(b.idx, k, axis=1).ravel())
+        cols.append(np.tile(b.idx, (1, k)).ravel())
+        vals.append(b.mat.ravel())
+    return _coo(rows, cols, vals, (size, size))
 
 
 @dataclass(frozen=True)
@@ -42,10 +70,19 @@ class System:
     K: sp.csr_matrix          # (n, n) stiffness: elastic + tension + load
     M: sp.csr_matrix          # (n, n) inertia
     f: np.ndarray             # (n,) gravity forces
-    K_pattern: sp.csr_matrix  # (n, n) sum of |element matrices| / norm: null(K) finder
     springs: SpringRows
+    beams: Blocks = None      # elastic stiffness of beam elements (primitive), if any
+    beam_psi: np.ndarray = None
+    geometric: tuple = ()     # Blocks of tension and load stiffness (sway)
     static: object = None     # StaticState when sway is on
     timings: dict = field(default_factory=dict)
+
+    @cached_property
+    def K_pattern(self):
+        """(n, n) sum of unit-scaled |element matrices|: the null space of K without its
+        stiffness contrasts (formed only when asked: the dense path)."""
+        return pattern(self.springs, self.dofs, [self.beams] if self.beams else [],
+                       self.geometric)
 
 
 def _coo(rows, cols, vals, shape):
@@ -80,7 +117,23 @@ def rope_rows(model, layout, which=None):
     return _coo(rows, cols, vals, (len(which), layout.size)), np.array(lengths)
 
 
-def spring_rows(model, layout, ropes_fe=None):
+def _member_geometry(model, layout, mm, which):
+    """Unit vectors and lengths of member elements `which`."""
+    coords = _all_coords(model, layout, mm)
+    return span_geometry(coords, mm.node[which, 0], mm.node[which, 1])
+
+
+def _all_coords(model, layout, mm):
+    """Coordinates of model nodes, then interior rope nodes, then member nodes."""
+    n_mem = mm.n_interior if mm is not None else 0
+    out = np.full((layout.n_nodes, 3), np.nan)
+    out[:len(model.coords)] = model.coords
+    if n_mem:
+        out[layout.n_nodes - n_mem:] = mm.coords
+    return out
+
+
+def spring_rows(model, layout, ropes_fe=None, members=None):
     """Rows of ropes, axial springs and rotational springs, with stiffness and psi.
 
     A massless rope is one row over its whole reeving (stiffness EA / L); a rope with
@@ -110,6 +163,22 @@ def spring_rows(model, layout, ropes_fe=None):
         lengths += list(rm.length)
         rope_of += list(rm.rope)
     n_rope_rows = len(c)
+    member_of = []
+    mm = members
+    if mm is not None and (~mm.beam).any():    # trusses: one row each, EA / l
+        t = np.flatnonzero(~mm.beam)
+        e, l = _member_geometry(model, layout, mm, t)
+        cc, v = elongation_rows(e, np.ones(len(t)), layout.node(mm.node[t, 0]),
+                                layout.node(mm.node[t, 1]))
+        blocks.append(_coo([np.repeat(np.arange(len(t)), 6)], [cc.ravel()], [v.ravel()],
+                           (len(t), layout.size)))
+        c += list(mm.E[t] * mm.A[t] / l)
+        psi += list(mm.psi[t])
+        names += [f"member {model.members[k].name}" for k in mm.member[t]]
+        lengths += list(l)
+        rope_of += [-1] * len(t)
+        member_of = list(t)
+    n_rope_rows = len(c)
     rows, cols, vals = [], [], []
     for k, s in enumerate(model.springs):
         if s.type == "axial":
@@ -132,10 +201,29 @@ def spring_rows(model, layout, ropes_fe=None):
         names.append(f"spring {s.name}")
     blocks.append(_coo(rows, cols, vals, (len(model.springs), layout.size)))
     ns = len(model.springs)
+    n_member = len(member_of)
     return SpringRows(sp.vstack(blocks).tocsr(), np.array(c, dtype=float),
                       np.array(psi, dtype=float), tuple(names), np.array(lengths),
                       np.array(rope_of + [-1] * ns, dtype=int),
-                      np.concatenate([-np.ones(n_rope_rows, dtype=int), np.arange(ns)]))
+                      np.concatenate([-np.ones(n_rope_rows, dtype=int), np.arange(ns)]),
+                      np.array([-1] * (n_rope_rows - n_member) + member_of + [-1] * ns,
+                               dtype=int))
+
+
+def beam_dofs(layout, mm, which):
+    """(ne, 12) primitive indices: translations and rotations of both ends."""
+    return np.hstack([6 * mm.node[which, :1] + np.arange(6), 6 * mm.node[which, 1:] +
+                      np.arange(6)]) if len(which) else np.zeros((0, 12), dtype=int)
+
+
+def beam_blocks(model, layout, mm):
+    """Elastic stiffness of the beam elements in global axes, and their absorption."""
+    from .elements import beam_axes, beam_stiffness, to_global
+    b = np.flatnonzero(mm.beam)
+    e, l = _member_geometry(model, layout, mm, b)
+    axes = beam_axes(e, mm.orientation[b])
+    k = beam_stiffness(mm.E[b], mm.G[b], mm.A[b], mm.Iy[b], mm.Iz[b], mm.J[b], l)
+    return Blocks(beam_dofs(layout, mm, b), to_global(k, axes)), mm.psi[b]
 
 
 def mass_and_gravity(model, dofs, effects):
@@ -183,7 +271,7 @@ def mass_and_gravity(model, dofs, effects):
             block(layout.node([i])[0], m * np.eye(3))
             f[layout.node([i])[0]] += m * model.gravity
 
-    for mem in model.members:
+    for mem in (model.members if dofs.members is None else ()):   # structure: rigid
         a, b = np.array(mem.nodes[:-1]), np.array(mem.nodes[1:])
         e, l = span_geometry(model.coords, a, b)
         cars = {int(dofs.carrier[i]) for i in mem.nodes}
@@ -213,7 +301,6 @@ def mass_and_gravity(model, dofs, effects):
 
     rm = dofs.ropes
     if rm is not None:          # rope elements: B^T M6 B on their end maps
-        from .elements import rope_mass
         from .ropes import endpoint_maps
         idx, B = endpoint_maps(rm, layout)
         M6 = rope_mass(rm.mu, rm.length, lumped=effects.rope_mass_matrix == "lumped")
@@ -223,6 +310,36 @@ def mass_and_gravity(model, dofs, effects):
         vals.append(Me.ravel())
         g2 = np.tile(model.gravity, 2)
         np.add.at(f, idx, np.einsum("kai,kab,b->ki", B, M6, g2))
+
+    mm = dofs.members
+    if mm is not None:          # flexible members: truss and beam element masses
+        from .elements import beam_axes, beam_mass, to_global
+        t, b = np.flatnonzero(~mm.beam), np.flatnonzero(mm.beam)
+        g12 = np.concatenate([model.gravity, np.zeros(3), model.gravity, np.zeros(3)])
+        if len(t):
+            _, l = _member_geometry(model, layout, mm, t)
+            idx = np.hstack([layout.node(mm.node[t, 0]), layout.node(mm.node[t, 1])])
+            mt = np.array([rope_mass(mm.rho[[k]] * mm.A[[k]], l[[i]],
+                                     lumped=bool(mm.lumped[k]))[0]
+                           for i, k in enumerate(t)]) if mm.lumped[t].any() != \
+                mm.lumped[t].all() else rope_mass(mm.rho[t] * mm.A[t], l,
+                                                   lumped=bool(mm.lumped[t].all()))
+            rows.append(np.repeat(idx, 6, axis=1).ravel())
+            cols.append(np.tile(idx, (1, 6)).ravel())
+            vals.append(mt.ravel())
+            np.add.at(f, idx, mt @ np.tile(model.gravity, 2))
+        if len(b):
+            e, l = _member_geometry(model, layout, mm, b)
+            axes = beam_axes(e, mm.orientation[b])
+            mb = np.where(mm.lumped[b][:, None, None],
+                          beam_mass(mm.rho[b], mm.A[b], mm.Iy[b], mm.Iz[b], l, lumped=True),
+                          beam_mass(mm.rho[b], mm.A[b], mm.Iy[b], mm.Iz[b], l))
+            mg = to_global(mb, axes)
+            idx = beam_dofs(layout, mm, b)
+            rows.append(np.repeat(idx, 12, axis=1).ravel())
+            cols.append(np.tile(idx, (1, 12)).ravel())
+            vals.append(mg.ravel())
+            np.add.at(f, idx, mg @ g12)
 
     for ld in model.linear_drives:      # rotor turns i/R rad per metre of stroke (eq. 14)
         a, c = ld.nodes
@@ -235,51 +352,54 @@ def mass_and_gravity(model, dofs, effects):
 
 
 def geometric_stiffness(model, dofs, static):
-    """Tension stiffness of spans and load stiffness of rigid groups (primitive).
-
-    Returns (K_g, P_g): the matrix and its pattern, each element block replaced by its
-    matrix absolute value V |L| V^T scaled to unit size (for the null-space test).
-    """
+    """Tension stiffness of spans, beams and the load stiffness of rigid groups, as a
+    tuple of Blocks (primitive coordinates)."""
     layout = dofs.layout
-    idx_list, blocks = [], []
+    out = []
     for a, b, falls, N in static.spans():
         e, l = span_geometry(dofs.coords, a, b)
-        idx_list.append(np.hstack([layout.node(a), layout.node(b)]))
-        blocks.append(string_stiffness(N, falls, e, l))
+        out.append(Blocks(np.hstack([layout.node(a), layout.node(b)]),
+                          string_stiffness(N, falls, e, l)))
+    mm = dofs.members
+    if mm is not None and mm.beam.any():
+        from .elements import beam_axes, beam_geometric, to_global
+        bi = np.flatnonzero(mm.beam)
+        e, l = span_geometry(dofs.coords, mm.node[bi, 0], mm.node[bi, 1])
+        out.append(Blocks(beam_dofs(layout, mm, bi),
+                          to_global(beam_geometric(static.beam_force, l),
+                                    beam_axes(e, mm.orientation[bi]))))
     first_body = {}
     for b, g in enumerate(dofs.group_of_body):
         first_body.setdefault(g, b)
     for g, point, F in static.point_forces(dofs):
         H = load_stiffness(F, point - dofs.group_ref[g]).sum(axis=0)
-        idx_list.append(layout.body(first_body[g])[None, 3:])
-        blocks.append(H[None])
-    shape = (layout.size, layout.size)
-    out = []
-    for absolute in (False, True):
-        rows, cols, vals = [], [], []
-        for idx, blk in zip(idx_list, blocks):
-            if absolute:
-                w, v = np.linalg.eigh(blk)
-                top = np.abs(w).max(axis=1)
-                blk = np.einsum("kij,kj,klj->kil", v, np.abs(w) / np.where(
-                    top > 0, top, 1)[:, None], v)
-            k = idx.shape[1]
-            rows.append(np.repeat(idx, k, axis=1).ravel())
-            cols.append(np.tile(idx, (1, k)).ravel())
-            vals.append(blk.ravel())
-        out.append(_coo(rows, cols, vals, shape))
+        out.append(Blocks(layout.body(first_body[g])[None, 3:], H[None]))
     return tuple(out)
 
 
-def _pattern(springs, Pg, T):
+def pattern(springs, dofs, elastic_blocks=(), geometric=()):
     """Sum of element matrices each scaled to unit size (PSD, null space of K)."""
     R = springs.R
     norms = np.sqrt(np.asarray(R.multiply(R).sum(axis=1)).ravel())
     Rn = sp.diags(1 / np.where(norms > 0, norms, 1)) @ R
     P = Rn.T @ Rn
-    if Pg is not None:
-        P = P + Pg
+    blocks = [b.unit_abs() for b in (*elastic_blocks, *geometric)]
+    if blocks:
+        P = P + sum_blocks(blocks, R.shape[1])
+    T = dofs.T
     return (T.T @ P @ T).tocsr()
+
+
+def elastic_stiffness(model, dofs):
+    """Primitive elastic stiffness: spring rows and beam blocks -> (K_u, springs, beams,
+    beam_psi)."""
+    springs = spring_rows(model, dofs.layout, dofs.ropes, dofs.members)
+    K_u = springs.R.T @ sp.diags(springs.c) @ springs.R
+    beams, beam_psi = None, None
+    if dofs.members is not None and dofs.members.beam.any():
+        beams, beam_psi = beam_blocks(model, dofs.layout, dofs.members)
+        K_u = K_u + sum_blocks([beams], dofs.layout.size)
+    return K_u.tocsr(), springs, beams, beam_psi
 
 
 def assemble(model, effects=None):
@@ -287,24 +407,19 @@ def assemble(model, effects=None):
     import time
     t0 = time.perf_counter()
     effects = effects or model.effects
-    if effects.structure == "flexible" and model.members:
-        raise ModelError("structure: flexible (members as finite elements) is not "
-                         "available in this version; set effects: {structure: rigid}",
-                         model.file, "effects.structure")
     dofs = build_dofs(model, effects)
-    springs = spring_rows(model, dofs.layout, dofs.ropes)
-    K_u = springs.R.T @ sp.diags(springs.c) @ springs.R
+    K_u, springs, beams, beam_psi = elastic_stiffness(model, dofs)
     M_u, f_u, _ = mass_and_gravity(model, dofs, effects)
-    static, Pg = None, None
+    static, geometric = None, ()
     if effects.sway:
         from .statics import solve_static
         static = solve_static(model, effects)
-        Kg, Pg = geometric_stiffness(model, dofs, static)
-        K_u = K_u + Kg
+        geometric = geometric_stiffness(model, dofs, static)
+        K_u = K_u + sum_blocks(geometric, dofs.layout.size)
     T = dofs.T
     K = (T.T @ K_u @ T).tocsr()
     K = ((K + K.T) * 0.5).tocsr()
     M = (T.T @ M_u @ T).tocsr()
     M = ((M + M.T) * 0.5).tocsr()
-    return System(model, effects, dofs, K, M, T.T @ f_u, _pattern(springs, Pg, T), springs,
-                  static, {"assemble": time.perf_counter() - t0})
+    return System(model, effects, dofs, K, M, T.T @ f_u, springs, beams, beam_psi,
+                  geometric, static, {"assemble": time.perf_counter() - t0})

@@ -33,7 +33,8 @@ COMP_NAMES = ("ux", "uy", "uz", "rx", "ry", "rz")
 
 @dataclass(frozen=True)
 class Layout:
-    """Primitive coordinate offsets."""
+    """Primitive coordinate offsets: six per node (translations, then rotations, which
+    exist only where beams meet), six per body, one per drum, one per rope slip."""
 
     n_nodes: int             # model nodes, then interior rope nodes
     n_bodies: int
@@ -42,11 +43,11 @@ class Layout:
 
     @property
     def body0(self):
-        return 3 * self.n_nodes
+        return 6 * self.n_nodes
 
     @property
     def drum0(self):
-        return 3 * self.n_nodes + 6 * self.n_bodies
+        return 6 * self.n_nodes + 6 * self.n_bodies
 
     @property
     def size(self):
@@ -54,7 +55,15 @@ class Layout:
 
     def node(self, i):
         """(k, 3) translation indices of nodes i."""
-        return 3 * np.asarray(i)[..., None] + np.arange(3)
+        return 6 * np.asarray(i)[..., None] + np.arange(3)
+
+    def rot(self, i):
+        """(k, 3) rotation indices of nodes i."""
+        return 6 * np.asarray(i)[..., None] + 3 + np.arange(3)
+
+    def translations(self, n=None):
+        """Translation indices of the first n nodes (all), node-major: (3 n,)."""
+        return self.node(np.arange(self.n_nodes if n is None else n)).ravel()
 
     def body(self, b):
         return self.body0 + 6 * np.asarray(b)[..., None] + np.arange(6)
@@ -81,8 +90,9 @@ class DofMap:
     group_q: np.ndarray       # (ng, 6) q_map index of each of the 6 components, -1 absent
     carrier: np.ndarray       # (nn,) group carrying each node, GROUND, or -2 = own DOFs
     constraints: tuple        # ConstraintRows used in T_c
-    coords: np.ndarray        # (nn, 3) model nodes, then interior rope nodes
+    coords: np.ndarray        # (nn, 3) model nodes, interior rope nodes, member nodes
     ropes: object = None      # cranefe.ropes.RopeMesh when rope mass is on
+    members: object = None    # cranefe.members.MemberMesh when the structure is flexible
 
     @property
     def n(self):
@@ -177,8 +187,14 @@ def build_dofs(model, effects=None):
         rm = discretize(model, effects.rope_mass)
     n_int, n_slip = (rm.n_interior, rm.n_slips) if rm else (0, 0)
     nn, nb, nd = len(model.node_names), len(model.bodies), len(model.drums)
-    layout = Layout(nn + n_int, nb, nd, n_slip)
-    coords = np.vstack([model.coords, rm.coords]) if rm else model.coords
+    mm = None
+    if effects.structure == "flexible" and model.members:
+        from .members import discretize as members_discretize
+        mm = members_discretize(model, nn + n_int)
+    n_mem = mm.n_interior if mm else 0
+    layout = Layout(nn + n_int + n_mem, nb, nd, n_slip)
+    coords = np.vstack([model.coords] + ([rm.coords] if rm else [])
+                       + ([mm.coords] if mm else []))
     comps = PLANAR_COMPONENTS if planar else tuple(range(6))
     group_of_body, ng = _groups(model)
 
@@ -208,8 +224,8 @@ def build_dofs(model, effects=None):
         group_ref[g] = group_ref[g] / gmass[g] if gmass[g] > 0 \
             else np.vstack(gnodes[g]).mean(axis=0)
 
-    # carrier of every node (interior rope nodes are free)
-    carrier = np.full(nn + n_int, -2, dtype=int)
+    # carrier of every node (interior rope and member nodes are free)
+    carrier = np.full(nn + n_int + n_mem, -2, dtype=int)
     carrier[model.ground] = GROUND
     for b, body in enumerate(model.bodies):
         for i in body.nodes:
@@ -256,11 +272,14 @@ def build_dofs(model, effects=None):
     # free nodes: only those something acts on get coordinates
     dirs = elastic_directions(model, effects)
     active = set(dirs) | set(model.masses.nodes.tolist()) | {d.node for d in model.drums}
-    node_names = list(model.node_names) + ([f"rope {n}" for n in rm.names] if rm else [])
+    node_names = list(model.node_names) + ([f"rope {n}" for n in rm.names] if rm else []) \
+        + (list(mm.names) if mm else [])
     for i in np.flatnonzero(carrier == -2):
-        if i >= nn:                        # interior rope node: along its fall without sway
+        if nn <= i < nn + n_int:           # interior rope node: along its fall without sway
             basis = _basis(np.eye(3) if effects.sway else rm.direction[i - nn][None],
                            planar)
+        elif i >= nn + n_int:              # interior node of a subdivided beam
+            basis = _basis(np.eye(3), planar)
         elif i not in active:
             continue
         elif effects.sway:
@@ -279,6 +298,22 @@ def build_dofs(model, effects=None):
             name = AXES[axis[0]] if len(axis) else f"d{k + 1}"
             labels.append(f"node {node_names[i]} {name}")
             kinds.append("node")
+
+    # rotations where beams meet: a body's, none on the ground, else their own
+    rot_comps = (4,) if planar else (3, 4, 5)
+    for i in (mm.rotation_nodes() if mm else ()):
+        g = carrier[i]
+        for c in rot_comps:
+            if g == GROUND:
+                continue
+            rows.append([layout.rot(i)[c - 3]])
+            vals.append([1.0])
+            if g >= 0:
+                cols.append([group_q[g, c]])
+            else:
+                cols.append([len(labels)])
+                labels.append(f"node {node_names[i]} {COMP_NAMES[c]}")
+                kinds.append("node")
 
     for d, drum in enumerate(model.drums):
         if effects.drive == "coupled" and not drum.brake:
@@ -302,12 +337,14 @@ def build_dofs(model, effects=None):
 
     constraints = _constraint_rows(model, effects, layout, T_map, group_of_body, group_q,
                                    group_ref, comps)
-    rotation = np.array([k == "drum" or (k == "body" and lab[-2:] in ("rx", "ry", "rz"))
+    rotation = np.array([k == "drum" or (k in ("body", "node") and lab[-2:] in
+                                          ("rx", "ry", "rz"))
                          for k, lab in zip(kinds, labels)], dtype=bool)
     T_c, keep = _eliminate(constraints, n_map, rotation, model.length_scale)
     return DofMap(layout, (T_map @ T_c).tocsr(), T_map, T_c,
                   tuple(labels[i] for i in keep), tuple(kinds[i] for i in keep),
-                  group_of_body, group_ref, group_q, carrier, tuple(constraints), coords, rm)
+                  group_of_body, group_ref, group_q, carrier, tuple(constraints), coords, rm,
+                  mm)
 
 
 def _constraint_rows(model, effects, layout, T_map, group_of_body, group_q, group_ref,

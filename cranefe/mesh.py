@@ -60,7 +60,7 @@ def line_mesh(model, dofs=None):
 def point_displacements(dofs, shapes):
     """(m, np, 3) displacements of the mesh points for q-space shapes (n, m)."""
     layout = dofs.layout
-    nodes = dofs.T[:3 * layout.n_nodes] @ shapes
+    nodes = dofs.T[layout.translations()] @ shapes
     body_rows = (layout.body0 + 6 * np.arange(layout.n_bodies)[:, None]
                  + np.arange(3)).ravel()
     coms = dofs.T[body_rows] @ shapes

@@ -75,7 +75,8 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
     # sign convention: the largest component of each shape is positive
     big = np.argmax(np.abs(shapes), axis=0)
     shapes = shapes * np.where(shapes[big, np.arange(shapes.shape[1])] < 0, -1.0, 1.0)
-    nodes = (system.dofs.T[:3 * system.dofs.layout.n_nodes] @ shapes).T
+    nn = len(model.node_names)
+    nodes = (system.dofs.T[system.dofs.layout.translations(nn)] @ shapes).T
     result = ModalResult(
         model.name, system.effects.as_dict(), system.dofs.labels, omega, shapes,
         nodes.reshape(len(omega), -1, 3), rigid, qc, ml, solver,

@@ -12,7 +12,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .assemble import mass_and_gravity, spring_rows, _pattern
+from .assemble import elastic_stiffness, mass_and_gravity, pattern
 from .condense import STATIC_DENSE_MAX, null_space
 from .dofs import build_dofs
 from .elements import span_geometry
@@ -31,6 +31,8 @@ class StaticState:
     node_force: np.ndarray     # (nn, 3) force of elements and drives on each node
     joint_forces: tuple        # (g1, g2, point, F): F acts on g1, -F on g2
     gravity_points: tuple      # (body, point, force) of every weight a body carries
+    beam_force: np.ndarray = None  # (nbeam,) axial force of beam elements (tension +)
+    members_fe: object = None  # MemberMesh when the structure is flexible
 
     @property
     def element_names(self):
@@ -57,6 +59,11 @@ class StaticState:
             S = self.element_force[np.isin(sp_.rope, list(fe))]
             span = rm.fall >= 0            # not the massless extra-length pieces
             yield rm.node[span, 0], rm.node[span, 1], np.ones(span.sum()), S[span]
+        trusses = np.flatnonzero(sp_.member >= 0)
+        if len(trusses):
+            mm_nodes = self.members_fe.node[sp_.member[trusses]]
+            yield mm_nodes[:, 0], mm_nodes[:, 1], np.ones(len(trusses)), \
+                self.element_force[trusses]
         for k, s in enumerate(m.springs):
             if s.type == "axial":
                 N = self.element_force[sp_.spring == k][0]
@@ -97,18 +104,25 @@ def solve_static(model, effects=None):
                       rope_elasticity=True)
     dofs = build_dofs(model, effects)
     layout = dofs.layout
-    springs = spring_rows(model, layout, dofs.ropes)
-    K_u = (springs.R.T @ sp.diags(springs.c) @ springs.R).tocsr()
+    K_u, springs, beams, _ = elastic_stiffness(model, dofs)
     _, f_u, gravity_points = mass_and_gravity(model, dofs, effects)
     T = dofs.T
     K = (T.T @ K_u @ T).tocsr()
     f = T.T @ f_u
-    q = _solve(K, f, _pattern(springs, None, T), dofs, model)
+    q = _solve(K, f, lambda: pattern(springs, dofs, [beams] if beams else []), dofs, model)
     u = T @ q
     element_force = springs.c * (springs.R @ u)
+    beam_force = np.zeros(0)
+    mm = dofs.members
+    if mm is not None and mm.beam.any():       # axial force N = EA/l e.(u_b - u_a)
+        bi = np.flatnonzero(mm.beam)
+        e, l = span_geometry(dofs.coords, mm.node[bi, 0], mm.node[bi, 1])
+        du = u[layout.node(mm.node[bi, 1])] - u[layout.node(mm.node[bi, 0])]
+        beam_force = mm.E[bi] * mm.A[bi] / l * np.einsum("ki,ki->k", e, du)
     nn = layout.n_nodes
     # point masses on bodies are in gravity_points, not in f_u's node rows
-    node_force = (f_u[:3 * nn] - (K_u @ u)[:3 * nn]).reshape(nn, 3)
+    tr = layout.translations()
+    node_force = (f_u[tr] - (K_u @ u)[tr]).reshape(nn, 3)
 
     # reactions of constraints: G^T lam = K_map u_map - f_map
     joint_forces, drive_force = [], np.zeros(len(model.linear_drives))
@@ -131,11 +145,11 @@ def solve_static(model, effects=None):
                 node_force[cc] += lc[0] * e[0]
                 node_force[a] -= lc[0] * e[0]
     # size of the forces meeting at each node, for a relative equilibrium test
-    scale = np.abs(f_u[:3 * nn]) + abs(springs.R[:, :3 * nn]).T @ np.abs(element_force)
-    _check_free_nodes(model, dofs, node_force, f_u[:3 * nn].reshape(nn, 3),
+    scale = np.abs(f_u[tr]) + abs(springs.R[:, tr]).T @ np.abs(element_force)
+    _check_free_nodes(model, dofs, node_force, f_u[tr].reshape(nn, 3),
                       scale.reshape(nn, 3))
     return StaticState(model, u, element_force, springs, dofs.ropes, drive_force,
-                       node_force, tuple(joint_forces), tuple(gravity_points))
+                       node_force, tuple(joint_forces), tuple(gravity_points), beam_force, mm)
 
 
 def _solve(K, f, P, dofs, model):
@@ -149,7 +163,7 @@ def _solve(K, f, P, dofs, model):
         except RuntimeError as exc:
             raise AnalysisError(f"static solution failed ({exc}): the model is a "
                                 "mechanism under gravity") from None
-    N = null_space(P.toarray())
+    N = null_space(P().toarray())
     Kd = K.toarray()
     if N.shape[1]:
         load = N.T @ f
