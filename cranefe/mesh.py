@@ -19,14 +19,15 @@ class LineMesh:
 
 
 def line_mesh(model, dofs=None):
-    """The line mesh; with `dofs` of a model with rope mass, ropes run through their
-    interior nodes (which follow the model's nodes in the point list)."""
+    """The line mesh; with `dofs`, ropes with mass and subdivided members run through
+    their interior nodes (which follow the model's nodes in the point list)."""
     rm = dofs.ropes if dofs is not None else None
-    interior = rm.coords if rm is not None else np.zeros((0, 3))
-    nn = len(model.node_names) + len(interior)
-    points = [model.coords, interior] + [b.com[None] for b in model.bodies]
+    mm = dofs.members if dofs is not None else None
+    coords = dofs.coords if dofs is not None else model.coords
+    nn = len(coords)
+    points = [coords] + [b.com[None] for b in model.bodies]
     names = list(model.node_names) + (list(rm.names) if rm is not None else []) + \
-        [f"{b.name} (com)" for b in model.bodies]
+        (list(mm.names) if mm is not None else []) + [f"{b.name} (com)" for b in model.bodies]
     lines, kind, element = [], [], []
 
     def add(a, b, k, name):
@@ -47,9 +48,13 @@ def line_mesh(model, dofs=None):
     for s in model.springs:
         if s.type == "axial":
             add(*s.nodes, "spring", f"spring {s.name}")
-    for m in model.members:
-        for a, b in zip(m.nodes[:-1], m.nodes[1:]):
-            add(a, b, "member", f"member {m.name}")
+    if mm is not None:
+        for (a, b), k in zip(mm.node, mm.member):
+            add(int(a), int(b), "member", f"member {model.members[k].name}")
+    else:
+        for m in model.members:
+            for a, b in zip(m.nodes[:-1], m.nodes[1:]):
+                add(a, b, "member", f"member {m.name}")
     for d in model.linear_drives:
         add(*d.nodes, "drive", f"drive {d.name}")
     return LineMesh(np.vstack(points), tuple(names),
