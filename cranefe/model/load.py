@@ -4,6 +4,7 @@ Every user-facing check lives here; nothing downstream re-validates input. Each 
 names the file, the entry (``ropes.hoist.path[2]``) and what to change.
 """
 
+import difflib
 import math
 import os
 
@@ -28,24 +29,41 @@ def load(path, text=None):
     data, text = read_yaml(path, text)
     r = _Reader(file)
     if not isinstance(data, dict):
-        raise ModelError("a model file is a mapping that starts with 'cranefe: 1'", file)
-    if "scene" in data or "model" in data:
+        raise ModelError(f"the file holds {_kind(data)}, but a model file is a mapping of "
+                         "keys that starts with 'cranefe: 1'", file)
+    if _is_scene(data):
         return _load_scene(data, file, r)
     return _build_model(data, file, text, r)
 
 
+def _is_scene(data):
+    return isinstance(data, dict) and ("scene" in data or "model" in data)
+
+
 def _load_scene(data, file, r):
-    r.keys(data, "", SCENE_KEYS, required=("cranefe", "model"))
+    r.keys(data, "", SCENE_KEYS)
     r.version(data)
+    if "model" not in data:
+        r.fail("model", "a scene names its model: add 'model: PATH' (relative to the scene "
+               "file)")
     model_path = data["model"]
-    if not isinstance(model_path, str):
+    if not isinstance(model_path, str) or not model_path:
         raise ModelError("must be the path of a model file, relative to the scene file",
                          file, "model")
     full = os.path.join(os.path.dirname(os.path.abspath(file)), model_path)
+    if os.path.isdir(full):
+        r.fail("model", f"'{model_path}' is a directory ({full}); name a model file")
     if not os.path.isfile(full):
         raise ModelError(f"model file '{model_path}' not found (looked for {full}); "
                          "the path is relative to the scene file", file, "model")
-    model = load(full)
+    mdata, mtext = read_yaml(full)
+    if _is_scene(mdata):
+        r.fail("model", f"'{model_path}' is a scene, not a model file; name the model file "
+               "itself")
+    if not isinstance(mdata, dict):
+        raise ModelError(f"the file holds {_kind(mdata)}, but a model file is a mapping of "
+                         "keys that starts with 'cranefe: 1'", full)
+    model = _build_model(mdata, full, mtext, _Reader(full))
     effects = _effects(data.get("effects"), model.effects, r, "effects")
     analysis = _analysis(data.get("analysis", {}), r)
     scene = data.get("scene")
@@ -105,31 +123,40 @@ class _Reader:
         raise ModelError(message, self.file, entry or None)
 
     def version(self, data):
-        if data.get("cranefe") != 1:
-            self.fail("cranefe", f"format version must be 1 (found {data.get('cranefe')!r}); "
-                      "start the file with 'cranefe: 1'")
+        if "cranefe" not in data:
+            self.fail("cranefe", "missing the format version; start the file with "
+                      "'cranefe: 1'")
+        v = data["cranefe"]
+        if isinstance(v, bool) or v != 1:
+            self.fail("cranefe", f"format version must be 1 (found {v!r}); this cranefe "
+                      "reads format 1: start the file with 'cranefe: 1'")
 
     def keys(self, d, entry, allowed, required=()):
         if not isinstance(d, dict):
             self.fail(entry, f"must be a mapping, not {_kind(d)}")
         for k in d:
             if k not in allowed:
+                close = difflib.get_close_matches(str(k), sorted(allowed), n=1)
+                hint = f"did you mean '{close[0]}'? " if close else ""
                 self.fail(f"{entry}.{k}" if entry else str(k),
-                          f"unknown key {k!r}; allowed here: {', '.join(sorted(allowed))}")
+                          f"unknown key {k!r}; {hint}allowed here: "
+                          f"{', '.join(sorted(allowed))}")
         for k in required:
             if k not in d:
-                self.fail(entry, f"missing required key '{k}'")
+                self.fail(entry, f"missing required key '{k}'; add it")
 
     def number(self, v, entry, positive=False, nonneg=False):
         if isinstance(v, bool) or not isinstance(v, (int, float)):
-            self.fail(entry, f"must be a number, not {_kind(v)} {v!r}")
+            hint = "; write a plain number in SI units, e.g. 2.0e7, without quotes or " \
+                "units" if isinstance(v, str) else ""
+            self.fail(entry, f"must be a number, not {_kind(v)} {v!r}{hint}")
         v = float(v)
         if not math.isfinite(v):
-            self.fail(entry, f"must be finite, not {v}")
+            self.fail(entry, f"must be a finite number, not {v}; give its value")
         if positive and v <= 0:
-            self.fail(entry, f"must be positive (found {v:g})")
+            self.fail(entry, f"must be positive (found {v:g}); give a value > 0")
         if nonneg and v < 0:
-            self.fail(entry, f"must not be negative (found {v:g})")
+            self.fail(entry, f"must not be negative (found {v:g}); give a value >= 0")
         return v
 
     def integer(self, v, entry, minimum=None):
@@ -215,8 +242,12 @@ class _Names:
 
 
 def _build_model(data, file, text, r):
-    r.keys(data, "", MODEL_KEYS, required=("cranefe", "nodes"))
+    r.keys(data, "", MODEL_KEYS)
     r.version(data)
+    if "nodes" not in data:
+        r.fail("nodes", "a model needs 'nodes:' (named points, e.g. 'A: [0, 0, 0]')")
+    if "name" in data and (isinstance(data["name"], (dict, list)) or data["name"] is None):
+        r.fail("name", f"must be text, not {_kind(data['name'])}")
     plane = data.get("plane")
     if plane not in (None, "xz"):
         r.fail("plane", f"only 'xz' is supported (found {plane!r}); omit it for a 3D model")
@@ -239,6 +270,15 @@ def _build_model(data, file, text, r):
             r.fail(f"nodes.{n}", f"y = {coords[i, 1]:g} is off the plane of a plane: xz "
                    "model; set y to 0 or remove 'plane: xz'")
     scale = float(np.ptp(coords, axis=0).max()) or 1.0
+
+    # register every name first, so that a reference to an entry further down the file
+    # that is of another kind says what it is ("'jib' is a body, not a node")
+    raw = {}
+    for section, kind in (("bodies", "body"), ("drums", "drum"), ("ropes", "rope"),
+                          ("members", "member"), ("linear_drives", "linear drive")):
+        raw[section] = r.mapping(data.get(section), section)
+        for i, n in enumerate(raw[section]):
+            names.add(kind, n, i)
 
     def node(v, entry):
         return names.get(v, "node", entry)[1]
@@ -272,8 +312,7 @@ def _build_model(data, file, text, r):
     # bodies
     bodies = []
     owner = {}
-    raw_bodies = r.mapping(data.get("bodies"), "bodies")
-    for bi, (bname, b) in enumerate(raw_bodies.items()):
+    for bi, (bname, b) in enumerate(raw["bodies"].items()):
         e = f"bodies.{bname}"
         if bname == "ground":
             r.fail(e, "'ground' is the name of the fixed frame; rename the body")
@@ -297,7 +336,7 @@ def _build_model(data, file, text, r):
             i = node(n, f"{e}.nodes[{k}]")
             if i in bnodes:
                 r.fail(f"{e}.nodes[{k}]", f"node '{n}' is listed twice")
-            owner.setdefault(i, []).append(bi)
+            owner.setdefault(i, []).append((bi, k))
             bnodes.append(i)
         if com is None:
             com = coords[bnodes].mean(axis=0) if bnodes else np.zeros(3)
@@ -322,7 +361,8 @@ def _build_model(data, file, text, r):
             r.fail(f"{e}.bodies", "a joint connects exactly two bodies (one may be ground)")
         b1, b2 = body(pair[0], f"{e}.bodies[0]"), body(pair[1], f"{e}.bodies[1]")
         if b1 == b2:
-            r.fail(f"{e}.bodies", "a joint connects two different bodies")
+            r.fail(f"{e}.bodies", f"a joint connects two different bodies (found "
+                   f"'{pair[0]}' twice); name the other body or 'ground'")
         at = node(j["at"], f"{e}.at")
         axis = None
         if j["type"] in ("hinge", "slider"):
@@ -331,7 +371,9 @@ def _build_model(data, file, text, r):
             elif planar and j["type"] == "hinge":
                 axis = np.array([0.0, 1.0, 0.0])
             else:
-                r.fail(e, f"a {j['type']} joint needs 'axis'")
+                r.fail(f"{e}.axis", f"missing: a {j['type']} joint in a 3D model needs "
+                       f"'axis: [x, y, z]' (the direction it "
+                       f"{'turns about' if j['type'] == 'hinge' else 'slides along'})")
             if planar and j["type"] == "hinge" and abs(abs(axis[1]) - 1) > 1e-12:
                 r.fail(f"{e}.axis", "a hinge in a plane: xz model turns about [0, 1, 0]")
             if planar and j["type"] == "slider" and abs(axis[1]) > 1e-12:
@@ -345,28 +387,35 @@ def _build_model(data, file, text, r):
         joint_nodes.setdefault(j.at, set()).update(j.bodies)
     for i, owners in owner.items():
         shared = joint_nodes.get(i, set())
-        if len(owners) > 1 and not set(owners) <= shared:
-            r.fail(f"bodies.{bodies[owners[1]].name}.nodes",
-                   f"node '{node_names[i]}' is already carried by body "
-                   f"'{bodies[owners[0]].name}'; a node belongs to one body unless a "
-                   "joint between them is at it")
+        carriers = [bi for bi, _ in owners]
+        if len(owners) > 1 and not set(carriers) <= shared:
+            (b0, _), (b1, k1) = owners[:2]
+            r.fail(f"bodies.{bodies[b1].name}.nodes[{k1}]",
+                   f"node '{node_names[i]}' is also carried by body '{bodies[b0].name}'; a "
+                   "node belongs to one body unless a joint between the bodies is at it: "
+                   f"add a joint at '{node_names[i]}' or use a separate node")
         if i in ground and GROUND not in shared:
-            r.fail(f"bodies.{bodies[owners[0]].name}.nodes",
-                   f"node '{node_names[i]}' is in ground; only the node of a joint to the "
-                   "ground may be both")
+            b0, k0 = owners[0]
+            r.fail(f"bodies.{bodies[b0].name}.nodes[{k0}]",
+                   f"node '{node_names[i]}' is also in ground; only the node of a joint "
+                   f"between the body and the ground may be both: add a joint to ground "
+                   f"at '{node_names[i]}' or remove it from ground or from the body")
 
     # springs
     springs = []
     seen = set()
     for k, s in enumerate(r.listing(data.get("springs", []) or [], "springs")):
         e = f"springs[{k}]"
-        r.keys(s, e, {"name", "type", "nodes", "bodies", "at", "axis", "stiffness", "psi"},
-               required=("type", "stiffness"))
+        if not isinstance(s, dict):
+            r.fail(e, f"must be a mapping such as {{type: axial, nodes: [A, B], "
+                   f"stiffness: 1.0e6}}, not {_kind(s)}")
         sname = r.name(s.get("name", f"spring{k + 1}"), f"{e}.name")
         if sname in seen:
-            r.fail(f"{e}.name", f"spring name '{sname}' is used twice")
+            r.fail(f"{e}.name", f"spring name '{sname}' is used twice; rename one")
         seen.add(sname)
         e = f"springs.{sname}" if "name" in s else e
+        r.keys(s, e, {"name", "type", "nodes", "bodies", "at", "axis", "stiffness", "psi"},
+               required=("type", "stiffness"))
         c = r.number(s["stiffness"], f"{e}.stiffness", positive=True)
         psi = r.number(s.get("psi", 0.0), f"{e}.psi", nonneg=True)
         if s["type"] == "axial":
@@ -395,7 +444,8 @@ def _build_model(data, file, text, r):
             elif planar:
                 axis = np.array([0.0, 1.0, 0.0])
             else:
-                r.fail(e, "a rotational spring in a 3D model needs 'axis'")
+                r.fail(f"{e}.axis", "missing: a rotational spring in a 3D model needs "
+                       "'axis: [x, y, z]'")
             if planar and abs(abs(axis[1]) - 1) > 1e-12:
                 r.fail(f"{e}.axis", "in a plane: xz model rotations are about [0, 1, 0]")
             springs.append(Spring(sname, "rotational", c, psi, bodies=(b1, b2), at=at,
@@ -405,11 +455,11 @@ def _build_model(data, file, text, r):
 
     # drums
     drums = []
-    for di, (dname, d) in enumerate(r.mapping(data.get("drums"), "drums").items()):
+    for di, (dname, d) in enumerate(raw["drums"].items()):
         e = f"drums.{dname}"
-        if dname in names.kinds:
-            r.fail(e, f"'{dname}' is also a {', '.join(names.kinds[dname])} name; rope paths "
-                   "need drum names distinct from node names")
+        if "node" in names.kinds.get(dname, {}):
+            r.fail(e, f"'{dname}' is also a node name; rope paths need drum names distinct "
+                   "from node names: rename the drum")
         r.keys(d, e, {"node", "radius", "inertia", "motor", "brake"},
                required=("node", "radius", "inertia"))
         motor = d.get("motor") or {}
@@ -427,19 +477,19 @@ def _build_model(data, file, text, r):
 
     # ropes
     ropes = []
-    for rname, rp in r.mapping(data.get("ropes"), "ropes").items():
+    for rname, rp in raw["ropes"].items():
         ropes.append(_rope(rname, rp, r, names, coords, scale, node_names, drums))
         names.add("rope", rname, len(ropes) - 1)
 
     # members
     members = []
-    for mname, m in r.mapping(data.get("members"), "members").items():
+    for mname, m in raw["members"].items():
         members.append(_member(mname, m, r, node, coords, scale, planar))
         names.add("member", mname, len(members) - 1)
 
     # linear drives
     linear = []
-    for lname, ld in r.mapping(data.get("linear_drives"), "linear_drives").items():
+    for lname, ld in raw["linear_drives"].items():
         e = f"linear_drives.{lname}"
         r.keys(ld, e, {"nodes", "pinion_radius", "gear_ratio", "rotor_inertia"},
                required=("nodes", "pinion_radius", "gear_ratio"))

@@ -42,40 +42,56 @@ _Loader.yaml_implicit_resolvers = {
 _Loader.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT, list("-+0123456789."))
 
 
+def _path(parent, key):
+    """``ropes.hoist.path[2]``-style entry names for messages."""
+    if isinstance(key, int):
+        return f"{parent}[{key}]"
+    return f"{parent}.{key}" if parent else str(key)
+
+
 def _check_graph(root, file):
     """Reject duplicate keys and alias expansions larger than MAX_EXPANDED_NODES."""
     sizes = {}
-    stack = [(root, False)]
+    open_ = set()          # nodes whose children are still being sized (recursion)
+    stack = [(root, False, "")]
     while stack:
-        node, done = stack.pop()
+        node, done, where = stack.pop()
         if id(node) in sizes:
             continue
+        if not done and id(node) in open_:
+            raise ModelError("an alias ('*name') refers to an entry that contains it, so the "
+                             "document would be infinite; replace the alias by its value",
+                             file, where or None)
         children = []
         if isinstance(node, yaml.MappingNode):
             seen = {}
             for k, v in node.value:
-                children += [k, v]
+                key = k.value if isinstance(k, yaml.ScalarNode) else "?"
+                children += [(k, where), (v, _path(where, key))]
                 if isinstance(k, yaml.ScalarNode) and k.value != "<<":
                     if k.value in seen:
                         line = k.start_mark.line + 1
+                        inside = f"in '{where}' " if where else "at the top level "
                         raise ModelError(
-                            f"key '{k.value}' is repeated in one mapping (lines "
-                            f"{seen[k.value]} and {line}); keep one of them",
-                            file, f"line {line}")
+                            f"key '{k.value}' is repeated {inside}(lines {seen[k.value]} "
+                            f"and {line}); YAML keeps only one of them, so delete or "
+                            "rename the other", file, f"{_path(where, key)}, line {line}")
                     seen[k.value] = k.start_mark.line + 1
         elif isinstance(node, yaml.SequenceNode):
-            children = list(node.value)
+            children = [(c, _path(where, i)) for i, c in enumerate(node.value)]
         if not done:
-            stack.append((node, True))
-            stack.extend((c, False) for c in children if id(c) not in sizes)
+            open_.add(id(node))
+            stack.append((node, True, where))
+            stack.extend((c, False, w) for c, w in children if id(c) not in sizes)
             continue
-        total = 1 + sum(sizes.get(id(c), 1) for c in children)
+        total = 1 + sum(sizes.get(id(c), 1) for c, _ in children)
         if total > MAX_EXPANDED_NODES:
             raise ModelError(
-                "the document expands (through aliases) to more than "
+                "the document expands (through aliases '*name') to more than "
                 f"{MAX_EXPANDED_NODES:,} entries; remove the recursive or repeated aliases",
-                file)
+                file, where or None)
         sizes[id(node)] = total
+        open_.discard(id(node))
 
 
 def read_yaml(path, text=None):
@@ -107,7 +123,20 @@ def read_yaml(path, text=None):
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else None
-        raise ModelError(f"YAML syntax error: {exc.problem or exc}", file, where) from None
+        hint = ""
+        if mark and "\t" in (text.splitlines()[mark.line:mark.line + 1] or [""])[0]:
+            hint = "; indent with spaces, not tabs"
+        cm = exc.context_mark
+        if exc.context and cm and (not mark or cm.line != mark.line):
+            hint += f" ({exc.context} that starts on line {cm.line + 1})"
+        raise ModelError(f"YAML syntax error: {exc.problem or exc}{hint}", file,
+                         where) from None
+    except yaml.reader.ReaderError as exc:
+        line = text[:max(exc.position, 0)].count("\n") + 1
+        ch = exc.character
+        ch = f"#x{ch:04x}" if isinstance(ch, int) else repr(ch)
+        raise ModelError(f"character {ch} is not allowed in YAML "
+                         "(a control character); delete it", file, f"line {line}") from None
     except yaml.YAMLError as exc:
         raise ModelError(f"YAML error: {exc}", file) from None
     except RecursionError:
