@@ -226,6 +226,16 @@ def beam_blocks(model, layout, mm):
     return Blocks(beam_dofs(layout, mm, b), to_global(k, axes)), mm.psi[b]
 
 
+def _carriers_of(model, dofs, i):
+    """Rigid groups (or GROUND) a node moves with: its carrier, and at a joint's node
+    every group the joint connects."""
+    out = {int(dofs.carrier[i])} if dofs.carrier[i] != -2 else set()
+    for j in model.joints:
+        if j.at == i:
+            out |= {GROUND if b == GROUND else int(dofs.group_of_body[b]) for b in j.bodies}
+    return out
+
+
 def mass_and_gravity(model, dofs, effects):
     """Primitive inertia matrix, gravity forces, and the weights bodies carry.
 
@@ -274,14 +284,15 @@ def mass_and_gravity(model, dofs, effects):
     for mem in (model.members if dofs.members is None else ()):   # structure: rigid
         a, b = np.array(mem.nodes[:-1]), np.array(mem.nodes[1:])
         e, l = span_geometry(model.coords, a, b)
-        cars = {int(dofs.carrier[i]) for i in mem.nodes}
-        if len(cars) != 1 or -2 in cars:
+        # a joint's node belongs to every body the joint connects (and to the ground)
+        cars = set.intersection(*(_carriers_of(model, dofs, i) for i in mem.nodes))
+        if not cars:
             raise ModelError("with structure: rigid a member's nodes must all be carried by "
                              "one body or the ground (found nodes on "
-                             f"{len(cars)} different carriers); put them on one body or "
+                             "different carriers); put them on one body or "
                              "use effects: {structure: flexible}", model.file,
                              f"members.{mem.name}")
-        car = cars.pop()
+        car = GROUND if GROUND in cars else min(cars)
         if car == GROUND:
             continue
         bi = first_body[car]

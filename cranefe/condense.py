@@ -53,6 +53,11 @@ class Condensed:
     massless: tuple           # labels of the statically condensed coordinates
 
 
+def no_inertia(model):
+    return ModelError("nothing that moves has inertia, so there is nothing to vibrate; give "
+                      "a node a mass (masses:) or a body a mass", model.file)
+
+
 def massless_split(M):
     """Indices (a, b) of coordinates with and without inertia (exact zero diagonal)."""
     d = M.diagonal()
@@ -71,11 +76,11 @@ def check_mechanisms(N, M, labels, model):
         v = N @ z[:, np.argmax(bad)]
         top = np.argsort(-np.abs(v))
         names = [labels[i] for i in top[:4] if abs(v[i]) > 0.05 * abs(v).max()]
-        node = next((n.split()[1] for n in names if n.startswith("node ")), None)
+        from .statics import entry_of
         raise ModelError(
             f"massless and unrestrained: {', '.join(names)} can move with no stiffness and "
             "no inertia; attach a rope or spring in that direction, give it mass, or add it "
-            "to ground", model.file, f"nodes.{node}" if node else None)
+            "to ground", model.file, entry_of(names[0]))
 
 
 def choose_quasi_cyclic(N, kinds):
@@ -115,6 +120,8 @@ def condense(system, method="schur"):
     N = null_space(system.K_pattern.toarray())
     check_mechanisms(N, M, labels, system.model)
     a, b = massless_split(M)
+    if not len(a):
+        raise no_inertia(system.model)
 
     # massless: q_b = -K_bb^-1 K_ba q_a
     rec_b = -np.linalg.solve(K[np.ix_(b, b)], K[np.ix_(b, a)]) if len(b) else \

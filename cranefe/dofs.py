@@ -127,8 +127,9 @@ def _groups(model):
         if j.type == "fixed":
             a, b = (nb if x == GROUND else x for x in j.bodies)
             ra, rb = find(a), find(b)
-            if ra != rb:
-                parent[max(ra, rb)] = min(ra, rb) if nb not in (ra, rb) else nb
+            if ra != rb:      # the ground's root stays the root of its group
+                lo, hi = (ra, rb) if ra == nb or (rb != nb and ra < rb) else (rb, ra)
+                parent[hi] = lo
     roots, group_of_body = {}, np.empty(nb, dtype=int)
     for b in range(nb):
         r = find(b)
@@ -295,7 +296,8 @@ def build_dofs(model, effects=None):
             cols.append(np.full(len(nz), len(labels)))
             vals.append(v[nz])
             axis = np.flatnonzero(np.abs(np.abs(v) - 1) < 1e-12)
-            name = AXES[axis[0]] if len(axis) else f"d{k + 1}"
+            name = AXES[axis[0]] if len(axis) else \
+                "along (" + ", ".join(f"{x:.3g}" for x in v + 0.0) + ")"
             labels.append(f"node {node_names[i]} {name}")
             kinds.append("node")
 

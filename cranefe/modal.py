@@ -16,7 +16,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .assemble import assemble
-from .condense import DENSE_MAX, condense, massless_split
+from .condense import DENSE_MAX, condense, massless_split, no_inertia
 from .errors import AnalysisError
 
 SMALL = 300        # below this many coordinates the dense solution is the fastest
@@ -66,6 +66,8 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
                             "nothing moves")
     if solver == "auto":       # dense when small, or when all modes are wanted
         solver = "dense" if n <= SMALL or (count is None and n <= DENSE_MAX) else "sparse"
+    if solver != "dense" and not np.any(system.M.diagonal() > 0):
+        raise no_inertia(model)
     t1 = time.perf_counter()
     if solver == "dense":
         omega, shapes, rigid, qc, ml = _dense(system, count)

@@ -172,14 +172,22 @@ def _solve(K, f, P, dofs, model):
             k = int(np.argmax(np.abs(load)))
             v = N[:, k]
             top = np.argsort(-np.abs(v))[:3]
-            names = ", ".join(dofs.labels[i] for i in top if abs(v[i]) > 0.1 * abs(v).max())
+            moved = [dofs.labels[i] for i in top if abs(v[i]) > 0.1 * abs(v).max()]
             raise ModelError(
-                f"not in static equilibrium: gravity moves {names} with nothing to resist "
-                f"it (unbalanced {abs(load[k]):.4g} N); support it with a joint, rope or "
-                "spring, or fix it", model.file)
+                f"not in static equilibrium: gravity moves {', '.join(moved)} with nothing "
+                f"to resist it (unbalanced {abs(load[k]):.4g} N); support it with a joint, "
+                "rope or spring, or fix it", model.file, entry_of(moved[0]))
         alpha = np.abs(np.diag(Kd)).max() or 1.0
         Kd = Kd + alpha * N @ N.T
     return sla.solve(Kd, f, assume_a="sym")
+
+
+def entry_of(label):
+    """The model entry a coordinate label belongs to: 'node B z' -> 'nodes.B'."""
+    kind, _, rest = label.partition(" ")
+    name = rest.split(" ")[0]
+    return {"node": f"nodes.{name}", "body": f"bodies.{name.split('+')[0]}",
+            "drum": f"drums.{name}"}.get(kind)
 
 
 def _check_free_nodes(model, dofs, node_force, weight_force, scale):
