@@ -392,7 +392,8 @@ def pattern(springs, dofs, elastic_blocks=(), geometric=()):
     """Sum of element matrices each scaled to unit size (PSD, null space of K)."""
     R = springs.R
     norms = np.sqrt(np.asarray(R.multiply(R).sum(axis=1)).ravel())
-    Rn = sp.diags(1 / np.where(norms > 0, norms, 1)) @ R
+    Rn = sp.diags(np.where((norms > 0) & (springs.c != 0), 1 / np.where(norms > 0, norms, 1),
+                           0.0)) @ R
     P = Rn.T @ Rn
     blocks = [b.unit_abs() for b in (*elastic_blocks, *geometric)]
     if blocks:
@@ -401,10 +402,14 @@ def pattern(springs, dofs, elastic_blocks=(), geometric=()):
     return (T.T @ P @ T).tocsr()
 
 
-def elastic_stiffness(model, dofs):
+def elastic_stiffness(model, dofs, effects=None):
     """Primitive elastic stiffness: spring rows and beam blocks -> (K_u, springs, beams,
-    beam_psi)."""
+    beam_psi). Inextensible ropes (rope_elasticity: false) are constraints of the DOF
+    map, so their rows carry no stiffness here."""
     springs = spring_rows(model, dofs.layout, dofs.ropes, dofs.members)
+    if effects is not None and not effects.rope_elasticity:
+        from dataclasses import replace
+        springs = replace(springs, c=np.where(springs.rope >= 0, 0.0, springs.c))
     K_u = springs.R.T @ sp.diags(springs.c) @ springs.R
     beams, beam_psi = None, None
     if dofs.members is not None and dofs.members.beam.any():
@@ -419,7 +424,7 @@ def assemble(model, effects=None):
     t0 = time.perf_counter()
     effects = effects or model.effects
     dofs = build_dofs(model, effects)
-    K_u, springs, beams, beam_psi = elastic_stiffness(model, dofs)
+    K_u, springs, beams, beam_psi = elastic_stiffness(model, dofs, effects)
     M_u, f_u, _ = mass_and_gravity(model, dofs, effects)
     static, geometric = None, ()
     if effects.sway:

@@ -39,42 +39,59 @@ class MemberMesh:
 
 
 def discretize(model, first_node):
-    """MemberMesh of the model's members; interior nodes are numbered from first_node."""
+    """MemberMesh of the model's members; interior nodes are numbered from first_node.
+
+    Vectorised per member (a lattice of 1e5 bars is one or a few members)."""
     coords, names = [], []
-    el = {k: [] for k in ("member", "beam", "node", "E", "G", "A", "Iy", "Iz", "J", "rho",
-                          "lumped", "psi", "orientation")}
+    parts = {k: [] for k in ("member", "beam", "node", "lumped", "orientation")}
+    props = {k: [] for k in ("E", "G", "A", "Iy", "Iz", "J", "rho", "psi")}
+    n_new = 0
     for mi, m in enumerate(model.members):
         beam = m.type == "beam"
+        pairs = member_pairs(m)
+        pa, pb = model.coords[pairs[:, 0]], model.coords[pairs[:, 1]]
+        e = (pb - pa) / np.linalg.norm(pb - pa, axis=1)[:, None]
+        if m.orientation is not None:
+            orient = np.broadcast_to(m.orientation, e.shape)
+        elif model.planar:                    # local y = global y: bending in x-z uses Iy
+            orient = np.cross(e, [0.0, 1.0, 0.0])
+        else:
+            orient = np.zeros_like(e)         # trusses need none
         n = m.elements if beam else 1
-        for a, b in zip(m.nodes[:-1], m.nodes[1:]):
-            pa, pb = model.coords[a], model.coords[b]
-            e = (pb - pa) / np.linalg.norm(pb - pa)
-            if m.orientation is not None:
-                orient = m.orientation
-            elif model.planar:                 # local y = global y: bending in x-z uses Iy
-                orient = np.cross(e, [0.0, 1.0, 0.0])
-            else:
-                orient = np.zeros(3)           # trusses need none
-            chain = [a]
-            for j in range(1, n):
-                chain.append(first_node + len(coords))
-                coords.append(pa + (pb - pa) * j / n)
-                names.append(f"{m.name} {model.node_names[a]}-{model.node_names[b]} {j}")
-            chain.append(b)
-            for j in range(n):
-                for key, val in (("member", mi), ("beam", beam),
-                                 ("node", (chain[j], chain[j + 1])), ("E", m.E),
-                                 ("G", m.G), ("A", m.A), ("Iy", m.Iy), ("Iz", m.Iz),
-                                 ("J", m.J), ("rho", m.rho),
-                                 ("lumped", m.mass == "lumped"), ("psi", m.psi),
-                                 ("orientation", orient)):
-                    el[key].append(val)
-    arr = {k: np.array(v) for k, v in el.items()}
-    arr["node"] = arr["node"].astype(int).reshape(-1, 2)
-    arr["orientation"] = arr["orientation"].astype(float).reshape(-1, 3)
-    arr["member"] = arr["member"].astype(int)
+        if n == 1:
+            nodes = pairs
+        else:                                 # interior nodes j = 1..n-1 of every piece
+            j = np.arange(1, n)
+            inner = pa[:, None, :] + (pb - pa)[:, None, :] * (j / n)[None, :, None]
+            ids = first_node + n_new + np.arange(len(pairs) * (n - 1)).reshape(-1, n - 1)
+            coords.append(inner.reshape(-1, 3))
+            names += [f"{m.name} {model.node_names[a]}-{model.node_names[b]} {k}"
+                      for a, b in pairs for k in j]
+            n_new += ids.size
+            chain = np.hstack([pairs[:, :1], ids, pairs[:, 1:]])
+            nodes = np.stack([chain[:, :-1], chain[:, 1:]], axis=-1).reshape(-1, 2)
+            orient = np.repeat(orient, n, axis=0)
+        ne = len(nodes)
+        parts["member"].append(np.full(ne, mi))
+        parts["beam"].append(np.full(ne, beam))
+        parts["node"].append(nodes)
+        parts["lumped"].append(np.full(ne, m.mass == "lumped"))
+        parts["orientation"].append(np.asarray(orient, dtype=float))
+        for k in props:
+            props[k].append(np.full(ne, float(getattr(m, k))))
+    cat = {k: (np.concatenate(v) if v else np.zeros(0)) for k, v in {**parts, **props}.items()}
+    cat["node"] = cat["node"].astype(int).reshape(-1, 2)
+    cat["orientation"] = cat["orientation"].reshape(-1, 3)
+    cat["member"] = cat["member"].astype(int)
     for k in ("beam", "lumped"):
-        arr[k] = arr[k].astype(bool)
-    for k in ("E", "G", "A", "Iy", "Iz", "J", "rho", "psi"):
-        arr[k] = arr[k].astype(float)
-    return MemberMesh(np.array(coords, dtype=float).reshape(-1, 3), tuple(names), **arr)
+        cat[k] = cat[k].astype(bool)
+    return MemberMesh(np.vstack(coords) if coords else np.zeros((0, 3)), tuple(names), **cat)
+
+
+def member_pairs(member):
+    """(k, 2) node pairs of a member: its chain's consecutive nodes, or its pairs."""
+    pairs = getattr(member, "pairs", None)
+    if pairs is not None and len(pairs):
+        return np.asarray(pairs, dtype=int).reshape(-1, 2)
+    chain = np.asarray(member.nodes, dtype=int)
+    return np.stack([chain[:-1], chain[1:]], axis=1)
