@@ -282,10 +282,12 @@ def mass_and_gravity(model, dofs, effects):
             f[layout.node([i])[0]] += m * model.gravity
 
     for mem in (model.members if dofs.members is None else ()):   # structure: rigid
-        a, b = np.array(mem.nodes[:-1]), np.array(mem.nodes[1:])
+        from .members import member_pairs
+        pairs = member_pairs(mem)
+        a, b = pairs[:, 0], pairs[:, 1]
         e, l = span_geometry(model.coords, a, b)
         # a joint's node belongs to every body the joint connects (and to the ground)
-        cars = set.intersection(*(_carriers_of(model, dofs, i) for i in mem.nodes))
+        cars = set.intersection(*(_carriers_of(model, dofs, i) for i in np.unique(pairs)))
         if not cars:
             raise ModelError("with structure: rigid a member's nodes must all be carried by "
                              "one body or the ground (found nodes on "

@@ -137,45 +137,40 @@ def _groups(model):
     return group_of_body, len(roots)
 
 
-def elastic_directions(model, effects):
-    """Per node, the directions (k, 3) its ropes, springs, drives and members act in."""
-    dirs = {}
-    coords = model.coords
+def direction_tensor(model, effects, n_nodes):
+    """Per node, D_i = sum of e e^T over the elastic elements acting on it, (n, 3, 3): its
+    eigenvectors with non-zero eigenvalue span the directions they resist (sway off).
 
-    def add(a, b):
-        e, _ = span_geometry(coords, np.atleast_1d(a), np.atleast_1d(b))
-        for i, j, v in zip(np.atleast_1d(a), np.atleast_1d(b), e):
-            dirs.setdefault(int(i), []).append(v)
-            dirs.setdefault(int(j), []).append(v)
-
+    Ropes, axial springs and linear drives act along their spans; members only when the
+    structure is flexible (trusses along their axes, beams in every direction)."""
+    D = np.zeros((n_nodes, 3, 3))
+    a_list, b_list = [], []
     for r in model.ropes:
-        add(r.span_a, r.span_b)
+        a_list.append(r.span_a)
+        b_list.append(r.span_b)
     for s in model.springs:
         if s.type == "axial":
-            add(*s.nodes)
+            a_list.append([s.nodes[0]])
+            b_list.append([s.nodes[1]])
     for d in model.linear_drives:
-        add(*d.nodes)
-    for m in model.members:
-        for a, b in zip(m.nodes[:-1], m.nodes[1:]):
-            if effects.structure == "flexible" or m.type == "truss":
-                add(a, b)
-            if effects.structure == "flexible" and m.type == "beam":
-                dirs.setdefault(a, []).extend(np.eye(3))
-                dirs.setdefault(b, []).extend(np.eye(3))
-    return {i: np.array(v) for i, v in dirs.items()}
-
-
-def _basis(vectors, planar, tol=1e-9):
-    """Orthonormal basis (3, k) of the span of row vectors (restricted to x-z if planar)."""
-    if planar:
-        vectors = vectors[:, [0, 2]]
-    _, s, vt = np.linalg.svd(vectors, full_matrices=False)
-    vt = vt[s > tol * s[0]]
-    if planar:
-        out = np.zeros((3, len(vt)))
-        out[[0, 2]] = vt.T
-        return out
-    return vt.T
+        a_list.append([d.nodes[0]])
+        b_list.append([d.nodes[1]])
+    if effects.structure == "flexible":
+        from .members import member_pairs
+        for m in model.members:
+            pairs = member_pairs(m)
+            if m.type == "truss":
+                a_list.append(pairs[:, 0])
+                b_list.append(pairs[:, 1])
+            else:
+                np.add.at(D, pairs.ravel(), np.eye(3))
+    if a_list:
+        a, b = np.concatenate(a_list).astype(int), np.concatenate(b_list).astype(int)
+        e, _ = span_geometry(model.coords, a, b)
+        ee = e[:, :, None] * e[:, None, :]
+        np.add.at(D, a, ee)
+        np.add.at(D, b, ee)
+    return D
 
 
 def build_dofs(model, effects=None):
@@ -271,33 +266,46 @@ def build_dofs(model, effects=None):
                 vals.append([1.0])
 
     # free nodes: only those something acts on get coordinates
-    dirs = elastic_directions(model, effects)
-    active = set(dirs) | set(model.masses.nodes.tolist()) | {d.node for d in model.drums}
+    D = direction_tensor(model, effects, layout.n_nodes)
+    if rm is not None:                      # interior rope nodes: along their fall
+        D[nn:nn + n_int] = rm.direction[:, :, None] * rm.direction[:, None, :]
+    if mm is not None:                      # interior nodes of subdivided beams
+        D[nn + n_int:] = np.eye(3)
+    active = np.abs(D).sum(axis=(1, 2)) > 0
+    active[model.masses.nodes] = True
+    active[[d.node for d in model.drums]] = True
+    if effects.sway:                        # every direction (tension stiffness)
+        D[active] = np.eye(3)
+    if planar:
+        D[:, 1, :] = D[:, :, 1] = 0.0
+    free = np.flatnonzero((carrier == -2) & active)
+    w, v = np.linalg.eigh(D[free]) if len(free) else (np.zeros((0, 3)), None)
+    keep = w > 1e-9 * np.maximum(w.max(axis=1, initial=0), 1e-300)[:, None]
+    full = keep.sum(axis=1) == (2 if planar else 3)
+    trans = (0, 2) if planar else (0, 1, 2)
     node_names = list(model.node_names) + ([f"rope {n}" for n in rm.names] if rm else []) \
         + (list(mm.names) if mm else [])
-    for i in np.flatnonzero(carrier == -2):
-        if nn <= i < nn + n_int:           # interior rope node: along its fall without sway
-            basis = _basis(np.eye(3) if effects.sway else rm.direction[i - nn][None],
-                           planar)
-        elif i >= nn + n_int:              # interior node of a subdivided beam
-            basis = _basis(np.eye(3), planar)
-        elif i not in active:
-            continue
-        elif effects.sway:
-            basis = _basis(np.eye(3), planar)
-        elif i in dirs:
-            basis = _basis(dirs[i], planar)
-        else:
-            continue
-        for k in range(basis.shape[1]):
-            v = basis[:, k]
-            nz = np.flatnonzero(np.abs(v) > 1e-15)
+    # nodes free in every direction: the global axes (vectorised: big lattices)
+    nodes_full = free[full]
+    q0 = len(labels)
+    for k, c in enumerate(trans):
+        rows.append(layout.node(nodes_full)[:, c])
+        cols.append(q0 + k + len(trans) * np.arange(len(nodes_full)))
+        vals.append(np.ones(len(nodes_full)))
+    labels += [f"node {node_names[i]} {AXES[c]}" for i in nodes_full for c in trans]
+    kinds += ["node"] * (len(trans) * len(nodes_full))
+    # the others: the directions their elements resist
+    for i, wi, vi in zip(free[~full], w[~full], v[~full] if v is not None else []):
+        for vec in vi[:, wi > 1e-9 * max(wi.max(), 1e-300)].T:
+            vec = np.where(np.abs(vec) > 1e-15, vec, 0.0)
+            vec = vec * np.sign(vec[np.argmax(np.abs(vec))])
+            nz = np.flatnonzero(vec)
             rows.append(layout.node(i)[nz])
             cols.append(np.full(len(nz), len(labels)))
-            vals.append(v[nz])
-            axis = np.flatnonzero(np.abs(np.abs(v) - 1) < 1e-12)
+            vals.append(vec[nz])
+            axis = np.flatnonzero(np.abs(np.abs(vec) - 1) < 1e-12)
             name = AXES[axis[0]] if len(axis) else \
-                "along (" + ", ".join(f"{x:.3g}" for x in v + 0.0) + ")"
+                "along (" + ", ".join(f"{x:.3g}" for x in vec + 0.0) + ")"
             labels.append(f"node {node_names[i]} {name}")
             kinds.append("node")
 

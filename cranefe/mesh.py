@@ -52,9 +52,10 @@ def line_mesh(model, dofs=None):
         for (a, b), k in zip(mm.node, mm.member):
             add(int(a), int(b), "member", f"member {model.members[k].name}")
     else:
+        from .members import member_pairs
         for m in model.members:
-            for a, b in zip(m.nodes[:-1], m.nodes[1:]):
-                add(a, b, "member", f"member {m.name}")
+            for a, b in member_pairs(m):
+                add(int(a), int(b), "member", f"member {m.name}")
     for d in model.linear_drives:
         add(*d.nodes, "drive", f"drive {d.name}")
     return LineMesh(np.vstack(points), tuple(names),

@@ -67,7 +67,9 @@ def run(args):
     eff = ", ".join(f"{k}={v}" for k, v in doc["effects"].items())
     print(f"{model.name} ({'planar x-z' if model.planar else '3D'}): {doc['dofs']} "
           f"coordinates; effects: {eff}")
-    print(f"  coordinates: {', '.join(doc['coordinates'])}")
+    coords = doc["coordinates"]
+    shown = ", ".join(coords if len(coords) <= 24 else coords[:12] + ["..."] + coords[-4:])
+    print(f"  coordinates: {shown}")
     if qc:
         print(f"  quasi-cyclic: {', '.join(qc)}")
     if massless:

@@ -262,13 +262,21 @@ def _build_model(data, file, text, r):
     nodes = r.mapping(data["nodes"], "nodes")
     if not nodes:
         r.fail("nodes", "a model needs at least one node")
-    node_names = tuple(nodes)
-    coords = np.array([r.vector(nodes[n], f"nodes.{n}") for n in node_names])
+    node_names = list(nodes)
+    coords = _coordinates(nodes, node_names, r)
     for i, n in enumerate(node_names):
         names.add("node", n, i)
-        if planar and coords[i, 1] != 0:
-            r.fail(f"nodes.{n}", f"y = {coords[i, 1]:g} is off the plane of a plane: xz "
-                   "model; set y to 0 or remove 'plane: xz'")
+    if planar and np.any(coords[:, 1] != 0):
+        i = int(np.flatnonzero(coords[:, 1] != 0)[0])
+        r.fail(f"nodes.{node_names[i]}", f"y = {coords[i, 1]:g} is off the plane of a "
+               "plane: xz model; set y to 0 or remove 'plane: xz'")
+    # members given as mesh files add their points as nodes (merged with coinciding ones)
+    mesh_pairs = {}
+    for mname, m in r.mapping(data.get("members"), "members").items():
+        if isinstance(m, dict) and "mesh" in m:
+            coords, mesh_pairs[mname] = _mesh_member(mname, m["mesh"], r, coords, node_names,
+                                                     names, planar)
+    node_names = tuple(node_names)
     scale = float(np.ptp(coords, axis=0).max()) or 1.0
 
     # register every name first, so that a reference to an entry further down the file
@@ -484,7 +492,8 @@ def _build_model(data, file, text, r):
     # members
     members = []
     for mname, m in raw["members"].items():
-        members.append(_member(mname, m, r, node, coords, scale, planar))
+        members.append(_member(mname, m, r, node, coords, scale, planar,
+                               mesh_pairs.get(mname), names))
         names.add("member", mname, len(members) - 1)
 
     # linear drives
@@ -597,18 +606,104 @@ def _pname(p, node_names, drums):
     return drums[p[1]].name if p[0] == "drum" else node_names[p[1]]
 
 
-def _member(name, m, r, node, coords, scale, planar):
+def _coordinates(nodes, node_names, r):
+    """(n, 3) node coordinates: a vectorised path for big files, per-node messages else."""
+    values = [nodes[n] for n in node_names]
+    if all(type(v) is list and len(v) == 3 and all(type(x) in (int, float) for x in v)
+           for v in values):
+        coords = np.array(values, dtype=float)
+        if np.all(np.isfinite(coords)):
+            return coords
+    return np.array([r.vector(nodes[n], f"nodes.{n}") for n in node_names])
+
+
+def _mesh_member(name, mesh, r, coords, node_names, names, planar):
+    """Read a member's line cells from a mesh file (any format meshio reads).
+
+    Points within 1e-6 of the model size of a named node are that node; the others become
+    nodes named 'NAME.i' (i the point's index in the file). Returns (coords, pairs)."""
+    e = f"members.{name}.mesh"
+    if not isinstance(mesh, str):
+        r.fail(e, "must be the path of a mesh file (VTU, Gmsh, Abaqus INP, ...)")
+    path = os.path.join(os.path.dirname(os.path.abspath(r.file)), mesh)
+    if not os.path.isfile(path):
+        r.fail(e, f"mesh file '{mesh}' not found (looked for {path}); the path is relative "
+               "to the model file")
+    import meshio
+    try:
+        m = meshio.read(path)
+    except Exception as exc:            # meshio raises many kinds for unreadable files
+        r.fail(e, f"meshio cannot read '{mesh}': {exc}")
+    lines = [c.data for c in m.cells if c.type == "line"]
+    if not lines:
+        r.fail(e, f"'{mesh}' has no line cells (found: "
+               f"{', '.join(sorted({c.type for c in m.cells})) or 'none'})")
+    pts = np.asarray(m.points, dtype=float)
+    if pts.shape[1] == 2:
+        pts = np.column_stack([pts[:, 0], np.zeros(len(pts)), pts[:, 1]]) if planar \
+            else np.column_stack([pts, np.zeros(len(pts))])
+    used = np.unique(np.concatenate(lines).ravel())
+    scale = float(np.ptp(np.vstack([coords, pts[used]]), axis=0).max()) or 1.0
+    index = np.full(len(pts), -1)
+    if len(coords):
+        from scipy.spatial import cKDTree
+        dist, near = cKDTree(coords).query(pts[used], distance_upper_bound=1e-6 * scale)
+        hit = np.isfinite(dist)
+        index[used[hit]] = near[hit]
+    new = used[index[used] < 0]
+    index[new] = len(coords) + np.arange(len(new))
+    for k, i in enumerate(new):
+        n = f"{name}.{i}"
+        if n in names.kinds:
+            r.fail(e, f"the mesh point name '{n}' is already used; rename that entry")
+        node_names.append(n)
+        names.add("node", n, len(coords) + k)
+    coords = np.vstack([coords, pts[new]])
+    if planar and np.any(np.abs(coords[:, 1]) > 0):
+        r.fail(e, "the mesh has points off the x-z plane of a plane: xz model")
+    return coords, index[np.concatenate(lines)]
+
+
+def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None):
     e = f"members.{name}"
-    r.keys(m, e, {"type", "nodes", "E", "G", "A", "Iy", "Iz", "J", "rho", "orientation",
-                  "elements", "mass", "psi"}, required=("type", "nodes", "E", "A"))
+    r.keys(m, e, {"type", "nodes", "pairs", "mesh", "E", "G", "A", "Iy", "Iz", "J", "rho",
+                  "orientation", "elements", "mass", "psi"}, required=("type", "E", "A"))
+    given = [k for k in ("nodes", "pairs", "mesh") if k in m]
+    if len(given) != 1:
+        r.fail(e, "give exactly one of 'nodes' (a chain), 'pairs' (a list of [A, B]) or "
+               f"'mesh' (a mesh file){'; found ' + ', '.join(given) if given else ''}")
     kind = m["type"]
     if kind not in ("beam", "truss"):
         r.fail(f"{e}.type", f"unknown member type {kind!r}; use beam or truss")
-    chain = [node(n, f"{e}.nodes[{k}]") for k, n in
-             enumerate(r.listing(m["nodes"], f"{e}.nodes", min_len=2))]
-    for k in range(1, len(chain)):
-        if np.linalg.norm(coords[chain[k]] - coords[chain[k - 1]]) <= 1e-9 * scale:
-            r.fail(f"{e}.nodes[{k}]", "zero-length piece: consecutive nodes coincide")
+    chain, pairs = (), None
+    if "nodes" in m:
+        chain = [node(n, f"{e}.nodes[{k}]") for k, n in
+                 enumerate(r.listing(m["nodes"], f"{e}.nodes", min_len=2))]
+        for k in range(1, len(chain)):
+            if np.linalg.norm(coords[chain[k]] - coords[chain[k - 1]]) <= 1e-9 * scale:
+                r.fail(f"{e}.nodes[{k}]", "zero-length piece: consecutive nodes coincide")
+        chain = tuple(chain)
+    else:
+        if "pairs" in m:
+            raw = r.listing(m["pairs"], f"{e}.pairs", min_len=1)
+            lookup = {n: ks["node"] for n, ks in names.kinds.items() if "node" in ks}
+            try:
+                pairs = np.array([[lookup[a], lookup[b]] for a, b in raw], dtype=int)
+            except (KeyError, TypeError, ValueError):
+                for k, p in enumerate(raw):
+                    if not isinstance(p, list) or len(p) != 2:
+                        r.fail(f"{e}.pairs[{k}]", f"must be a pair [A, B] of node names, "
+                               f"not {p!r}")
+                    node(p[0], f"{e}.pairs[{k}][0]")
+                    node(p[1], f"{e}.pairs[{k}][1]")
+        else:
+            pairs = np.asarray(mesh_pairs, dtype=int)
+        short = np.linalg.norm(coords[pairs[:, 1]] - coords[pairs[:, 0]], axis=1) \
+            <= 1e-9 * scale
+        if short.any():
+            k = int(np.flatnonzero(short)[0])
+            r.fail(f"{e}.{'pairs' if 'pairs' in m else 'mesh'}[{k}]",
+                   "zero-length element: its two nodes coincide")
     kw = {}
     if kind == "beam":
         need = ("G", "Iy", "Iz", "J") if not planar else ("Iy",)
@@ -632,8 +727,8 @@ def _member(name, m, r, node, coords, scale, planar):
     mass = m.get("mass", "consistent")
     if mass not in ("consistent", "lumped"):
         r.fail(f"{e}.mass", f"{mass!r} is not consistent or lumped")
-    return Member(name, kind, tuple(chain), r.number(m["E"], f"{e}.E", positive=True),
+    return Member(name, kind, chain, r.number(m["E"], f"{e}.E", positive=True),
                   r.number(m["A"], f"{e}.A", positive=True),
                   r.number(m.get("rho", 0.0), f"{e}.rho", nonneg=True),
-                  elements=elements, mass=mass,
+                  elements=elements, mass=mass, pairs=pairs,
                   psi=r.number(m.get("psi", 0.0), f"{e}.psi", nonneg=True), **kw)

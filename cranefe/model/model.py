@@ -113,6 +113,7 @@ class Member:
     elements: int = 1
     mass: str = "consistent"
     psi: float = 0.0
+    pairs: np.ndarray = None     # (k, 2) separate two-node pieces (extension), else None
 
 
 @dataclass(frozen=True)

@@ -31,8 +31,21 @@ _FLOAT = re.compile(
 )
 
 
+class _Duplicate(Exception):
+    """A mapping repeats a key (found while constructing; explained by _check_graph)."""
+
+
 class _Loader(_BaseLoader):
-    """Safe loader whose float resolver also accepts exponents without a dot or sign."""
+    """Safe loader whose float resolver also accepts exponents without a dot or sign, and
+    which refuses repeated keys while it constructs (cheap: no second walk of the graph).
+    """
+
+    def construct_mapping(self, node, deep=False):
+        keys = [k.value for k, _ in node.value
+                if isinstance(k, yaml.ScalarNode) and k.value != "<<"]
+        if len(keys) != len(set(keys)):
+            raise _Duplicate()
+        return super().construct_mapping(node, deep)
 
 
 _Loader.yaml_implicit_resolvers = {
@@ -118,8 +131,13 @@ def read_yaml(path, text=None):
         node = loader.get_single_node()
         if node is None:
             raise ModelError("the file is empty; a model starts with 'cranefe: 1'", file)
-        _check_graph(node, file)
-        data = loader.construct_document(node)
+        if "&" in text:            # anchors, so aliases are possible: bound the expansion
+            _check_graph(node, file)
+        try:
+            data = loader.construct_document(node)
+        except _Duplicate:
+            _check_graph(node, file)      # names the entry and both lines
+            raise
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else None
