@@ -332,15 +332,17 @@ def mass_and_gravity(model, dofs, effects):
         if len(t):
             _, l = _member_geometry(model, layout, mm, t)
             idx = np.hstack([layout.node(mm.node[t, 0]), layout.node(mm.node[t, 1])])
-            mt = np.array([rope_mass(mm.rho[[k]] * mm.A[[k]], l[[i]],
-                                     lumped=bool(mm.lumped[k]))[0]
-                           for i, k in enumerate(t)]) if mm.lumped[t].any() != \
-                mm.lumped[t].all() else rope_mass(mm.rho[t] * mm.A[t], l,
-                                                   lumped=bool(mm.lumped[t].all()))
-            rows.append(np.repeat(idx, 6, axis=1).ravel())
-            cols.append(np.tile(idx, (1, 6)).ravel())
+            lump = mm.lumped[t]
+            m_e = mm.rho[t] * mm.A[t] * l
+            # lumped: m/2 on the diagonal (no 6x6 blocks of zeros for big lattices)
+            rows.append(idx[lump].ravel())
+            cols.append(idx[lump].ravel())
+            vals.append(np.repeat(m_e[lump] / 2, 6))
+            mt = rope_mass(mm.rho[t][~lump] * mm.A[t][~lump], l[~lump])
+            rows.append(np.repeat(idx[~lump], 6, axis=1).ravel())
+            cols.append(np.tile(idx[~lump], (1, 6)).ravel())
             vals.append(mt.ravel())
-            np.add.at(f, idx, mt @ np.tile(model.gravity, 2))
+            np.add.at(f, idx, (m_e / 2)[:, None] * np.tile(model.gravity, 2))
         if len(b):
             e, l = _member_geometry(model, layout, mm, b)
             axes = beam_axes(e, mm.orientation[b])

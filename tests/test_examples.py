@@ -22,6 +22,7 @@ PINNED = {
     "hammerhead_tower_crane.yaml": 0.09057813,
     "luffing_tower_crane.yaml": 0.07883838,
     "logging_skyline.yaml": 0.19440453,
+    "lattice_tower_crane.yaml": 0.22051153,
 }
 
 

@@ -19,10 +19,15 @@ def run(args):
     from ..model import load
     from ..modal import drive_reduction, modes
     from ..report import dumps, modes_document, modes_table
+    import time
+    t0 = time.perf_counter()
     model = load(args.file)
+    t_load = time.perf_counter() - t0
     count = args.count or model.analysis.get("count")
     system = assemble(model)
     result = modes(model, count=count, solver=args.solver, system=system)
+    result.timings = {"load": t_load, **result.timings,
+                      "total": time.perf_counter() - t0}
     comparison = drive_reduction(model, result) if model.effects.drive == "reduced" else None
     if args.json:
         print(dumps(modes_document(result, comparison)))
