@@ -41,8 +41,10 @@ def test_cantilever_converges_with_order_four(model_from, planar):
         # frequencies, besides torsion and axial modes
         err.append(matched(w, exact) / exact - 1)
         if not planar:
+            # same discretisation error by similarity (to 1e-9 of w: the 3D beam is a
+            # graded problem, solved by Jacobi SVD to about 1e-10 relative)
             assert matched(w, 2 * exact[:1]) / (2 * exact[0]) - 1 == pytest.approx(
-                err[-1][0], rel=1e-6)
+                err[-1][0], abs=1e-9)
     err = np.array(err)
     assert np.all(err > 0)                          # consistent mass: upper bounds
     slope = -np.polyfit(np.log(Ns[1:]), np.log(err[1:, 0]), 1)[0]
