@@ -51,6 +51,7 @@ class Condensed:
     rigid: np.ndarray         # (n, k) quasi-cyclic motions, mass-normalised
     quasi_cyclic: tuple       # labels of the chosen quasi-cyclic coordinates
     massless: tuple           # labels of the statically condensed coordinates
+    warnings: tuple = ()
 
 
 def no_inertia(model):
@@ -150,9 +151,19 @@ def condense(system, method="schur"):
     recover[b] = rec_b @ rec_a
     K1 = Ks[np.ix_(p, p)]
 
-    rigid = N
+    rigid, warnings = N, []
     if N.shape[1]:
         L = np.linalg.cholesky(N.T @ M @ N)
         rigid = np.linalg.solve(L, N.T).T            # N L^-T: rigid^T M rigid = I
+        # a motion the elements resist by less than the resolution of the pattern
+        # (NULL_TOL) is treated as free; say so when K itself still sees it
+        w2 = np.einsum("ij,ij->j", rigid, K @ rigid)
+        for k in np.flatnonzero(w2 > 1e-24 * max(np.abs(np.diag(K)).max(), 1e-300)):
+            v = np.abs(rigid[:, k])
+            names = ", ".join(labels[i] for i in np.argsort(-v)[:2])
+            warnings.append(f"{names}: nearly unrestrained (its stiffness is below 1e-10 of "
+                            "its elements'), treated as free; its true frequency is about "
+                            f"{np.sqrt(max(w2[k], 0.0)):.3g} rad/s")
     return Condensed(0.5 * (K1 + K1.T), 0.5 * (A1 + A1.T), recover, rigid,
-                     tuple(labels[a[i]] for i in c), tuple(labels[i] for i in b))
+                     tuple(labels[a[i]] for i in c), tuple(labels[i] for i in b),
+                     tuple(warnings))

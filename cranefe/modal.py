@@ -69,8 +69,9 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
     if solver != "dense" and not np.any(system.M.diagonal() > 0):
         raise no_inertia(model)
     t1 = time.perf_counter()
+    warnings = []
     if solver == "dense":
-        omega, shapes, rigid, qc, ml = _dense(system, count)
+        omega, shapes, rigid, qc, ml, warnings = _dense(system, count)
     else:
         omega, shapes, rigid, qc, ml = _sparse(system, count or 10)
     t2 = time.perf_counter()
@@ -82,7 +83,8 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
     result = ModalResult(
         model.name, system.effects.as_dict(), system.dofs.labels, omega, shapes,
         nodes.reshape(len(omega), -1, 3), rigid, qc, ml, solver,
-        {**system.timings, "solve": t2 - t1, "total": time.perf_counter() - t0})
+        {**system.timings, "solve": t2 - t1, "total": time.perf_counter() - t0},
+        list(warnings))
     if system.static is not None:
         slack = [f"rope {r.name} has no tension ({S:.3g} N) somewhere in the static state"
                  for r, (S, _) in zip(model.ropes, system.static.rope_tension()) if S <= 0]
@@ -100,7 +102,7 @@ def _dense(system, count):
     rigid = np.arange(len(omega)) < c.rigid.shape[1]
     if count is not None:
         omega, shapes, rigid = omega[:count], shapes[:, :count], rigid[:count]
-    return omega, shapes, rigid, c.quasi_cyclic, c.massless
+    return omega, shapes, rigid, c.quasi_cyclic, c.massless, c.warnings
 
 
 GRADED = 1e6      # spread of Rayleigh quotients K_ii/M_ii above which Jacobi SVD is used
