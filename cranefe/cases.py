@@ -77,3 +77,43 @@ def matched(omega, exact):
     """The computed frequency nearest each exact one (for cases with other modes too)."""
     omega = np.asarray(omega)
     return np.array([omega[np.argmin(np.abs(omega - w))] for w in exact])
+
+
+def spring_chain(N, k=1.0e6, m=100.0):
+    """Fixed-free chain of N equal masses m joined by N equal springs k (the first to the
+    ground), sway off: the discrete system's exact frequencies are
+    w_j = 2 sqrt(k/m) sin((2j - 1) pi / (2 (2N + 1)))  (e.g. Weaver, Timoshenko & Young,
+    Vibration Problems in Engineering, lumped chains)."""
+    nodes = "{G: [0, 0, 0], " + ", ".join(f"N{i}: [{i + 1}, 0, 0]" for i in range(N)) + "}"
+    ends = ["G"] + [f"N{i}" for i in range(N)]
+    springs = "\n".join(f"  - {{name: k{i}, type: axial, nodes: [{a}, {b}], stiffness: {k}}}"
+                        for i, (a, b) in enumerate(zip(ends[:-1], ends[1:])))
+    masses = "{" + ", ".join(f"N{i}: {m}" for i in range(N)) + "}"
+    text = (f"cranefe: 1\nname: spring chain {N}\nplane: xz\ngravity: [0, 0, 0]\n"
+            f"nodes: {nodes}\nground: [G]\nmasses: {masses}\nsprings:\n{springs}\n"
+            "effects: {sway: false}\n")
+    j = np.arange(1, N + 1)
+    return text, {"omega": 2 * np.sqrt(k / m) * np.sin((2 * j - 1) * np.pi / (2 * (2 * N + 1)))}
+
+
+def two_mass_hoist(falls=2, J=500.0, R=0.25, m=5000.0, EA=2.0e7):
+    """Drum (inertia J, radius R) hauling a load m on a tackle of `falls`, sway off.
+    Coupled: w^2 = k (n^2/m + R^2/J); drive reduced (Heletiy 2016 eq. 10, drum held):
+    w^2 = n^2 k / m; relative error of w^2: m r^2 / (m r^2 + J), r = R / n."""
+    text = f"""cranefe: 1
+name: two-mass hoist
+plane: xz
+nodes: {{D: [0, 0, 0], S: [0, 0, 30], B: [0, 0, 10]}}
+ground: [D, S]
+masses: {{B: {m}}}
+drums:
+  hoist: {{node: D, radius: {R}, inertia: {J}}}
+ropes:
+  hoist: {{EA: {EA}, path: [hoist, S, {{node: B, falls: {falls}}}]}}
+effects: {{sway: false}}
+"""
+    k = EA / (30 + 20 * falls)
+    r = R / falls
+    return text, {"omega": np.array([np.sqrt(k * (falls**2 / m + R**2 / J))]),
+                  "omega_reduced": np.array([np.sqrt(falls**2 * k / m)]),
+                  "error_w2": m * r**2 / (m * r**2 + J)}
