@@ -422,12 +422,15 @@ def elastic_stiffness(model, dofs, effects=None):
     return K_u.tocsr(), springs, beams, beam_psi
 
 
-def assemble(model, effects=None):
-    """Assemble K, M, f for `model` with `effects` (default: the model's own)."""
+def assemble(model, effects=None, dofs=None):
+    """Assemble K, M, f for `model` with `effects` (default: the model's own).
+
+    `dofs` may pass a DofMap built for a model of the same structure (see
+    `cranefe.sweeps.evaluate`), which skips building it again."""
     import time
     t0 = time.perf_counter()
     effects = effects or model.effects
-    dofs = build_dofs(model, effects)
+    dofs = dofs or build_dofs(model, effects)
     K_u, springs, beams, beam_psi = elastic_stiffness(model, dofs, effects)
     M_u, f_u, _ = mass_and_gravity(model, dofs, effects)
     static, geometric = None, ()

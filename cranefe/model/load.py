@@ -25,22 +25,21 @@ ANALYSIS_TYPES = ("modes", "damping", "transient", "luffing")
 
 def load(path, text=None):
     """Load a model file or a scene file (which names a model) into a `Model`."""
+    return build(*read_raw(path, text))
+
+
+def read_raw(path, text=None):
+    """The checked-as-YAML data of a model or scene file, before it becomes a `Model`:
+    ``(model_data, model_file, model_text, scene_data, scene_file)``, the last two None
+    for a model file. `build` turns them (possibly edited, as sweeps do) into a Model."""
     file = str(path)
     data, text = read_yaml(path, text)
     r = _Reader(file)
     if not isinstance(data, dict):
         raise ModelError(f"the file holds {_kind(data)}, but a model file is a mapping of "
                          "keys that starts with 'cranefe: 1'", file)
-    if _is_scene(data):
-        return _load_scene(data, file, r)
-    return _build_model(data, file, text, r)
-
-
-def _is_scene(data):
-    return isinstance(data, dict) and ("scene" in data or "model" in data)
-
-
-def _load_scene(data, file, r):
+    if not _is_scene(data):
+        return data, file, text, None, None
     r.keys(data, "", SCENE_KEYS)
     r.version(data)
     if "model" not in data:
@@ -63,12 +62,24 @@ def _load_scene(data, file, r):
     if not isinstance(mdata, dict):
         raise ModelError(f"the file holds {_kind(mdata)}, but a model file is a mapping of "
                          "keys that starts with 'cranefe: 1'", full)
-    model = _build_model(mdata, full, mtext, _Reader(full))
-    effects = _effects(data.get("effects"), model.effects, r, "effects")
-    analysis = _analysis(data.get("analysis", {}), r)
-    scene = data.get("scene")
+    return mdata, full, mtext, data, file
+
+
+def build(model_data, model_file, model_text="", scene_data=None, scene_file=None):
+    """A checked `Model` from raw data (see `read_raw`)."""
+    model = _build_model(model_data, model_file, model_text, _Reader(model_file))
+    if scene_data is None:
+        return model
+    r = _Reader(scene_file)
+    effects = _effects(scene_data.get("effects"), model.effects, r, "effects")
+    analysis = _analysis(scene_data.get("analysis", {}), r)
+    scene = scene_data.get("scene")
     return _replace(model, effects=effects, analysis=analysis,
-                    scene=str(scene) if scene is not None else os.path.basename(file))
+                    scene=str(scene) if scene is not None else os.path.basename(scene_file))
+
+
+def _is_scene(data):
+    return isinstance(data, dict) and ("scene" in data or "model" in data)
 
 
 def _replace(model, **kw):
