@@ -11,6 +11,9 @@ def add_arguments(p):
 def run(args):
     from ..archive import read
     from ..report import dumps, modes_document, modes_table
+    from ..sweeps.table import is_sweep
+    if is_sweep(args.file):
+        return _show_sweep(args)
     arc = read(args.file)
     meta = {k: v for k, v in arc.meta.items() if k != "timings"}
     modal = arc.results.get("modes")
@@ -33,4 +36,31 @@ def run(args):
     print(f"  results: {', '.join(sorted(arc.results)) or 'none'}")
     if modal is not None:
         print(modes_table(modal))
+    return 0
+
+
+def _show_sweep(args):
+    import numpy as np
+
+    from ..report import dumps
+    from ..sweeps.table import read_table
+    t = read_table(args.file)
+    ok = np.array([s == "ok" for s in t.status], dtype=bool)
+    doc = {"file": args.file, "sweep": t.name, "variants": t.total, "done": len(t.index),
+           "failed": int((~ok).sum()), "parameters": list(t.parameters),
+           "outputs": {o: {"min": float(np.nanmin(t.results[ok, k])),
+                           "max": float(np.nanmax(t.results[ok, k]))} if ok.any() else None
+                       for k, o in enumerate(t.outputs)}}
+    if args.json:
+        print(dumps(doc))
+        return 0
+    print(f"{args.file}: sweep '{t.name}', {len(t.index)}/{t.total} variants done, "
+          f"{doc['failed']} failed")
+    print(f"  parameters: {', '.join(t.parameters)}")
+    for o, mm in doc["outputs"].items():
+        if mm:
+            print(f"  {o}: {mm['min']:.6g} .. {mm['max']:.6g}")
+    for i, s, e in zip(t.index, t.status, t.errors):
+        if s != "ok":
+            print(f"  variant {i} failed: {e}")
     return 0

@@ -1,0 +1,58 @@
+"""Run a parameter sweep: many variants of one model, locally or on a Dask cluster."""
+
+HELP = "run a parameter sweep (docs/sweeps.md)"
+
+
+def add_arguments(p):
+    p.add_argument("file", help="sweep file (YAML)")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--workers", type=int, default=None,
+                   help="local processes (default: all cores; 0 = serial, in this process)")
+    g.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on a Dask distributed cluster (e.g. tcp://host:8786)")
+    p.add_argument("--no-reuse", action="store_true",
+                   help="rebuild the DOF map for every variant (for measuring)")
+    p.add_argument("--plots", metavar="DIR", help="write output-vs-parameter PNGs")
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+
+
+def run(args):
+    import json
+    import sys
+
+    import numpy as np
+    from rich.progress import Progress
+
+    from ..sweeps.engine import run_sweep
+    from ..sweeps.spec import load_sweep
+    from ..sweeps.table import read_table
+    sweep = load_sweep(args.file)
+    with Progress(transient=True, disable=not sys.stderr.isatty()) as bar:
+        task = bar.add_task(sweep.name, total=len(sweep.variants))
+        done = run_sweep(sweep, workers=args.workers, scheduler=args.scheduler,
+                         reuse=not args.no_reuse,
+                         progress=lambda k: bar.advance(task, k))
+    table = read_table(sweep.output)
+    failed = [(i, r["error"]) for i, r in sorted(done.items()) if r["status"] != "ok"]
+    if args.plots:
+        from ..sweeps.plots import plot_table
+        for path in plot_table(table, args.plots):
+            print(f"wrote {path}", file=sys.stderr)
+    summary = {"sweep": sweep.name, "variants": len(sweep.variants), "done": len(done),
+               "failed": len(failed), "table": sweep.output,
+               "outputs": {o: {"min": float(np.nanmin(table.results[:, k])),
+                               "max": float(np.nanmax(table.results[:, k]))}
+                           if np.isfinite(table.results[:, k]).any() else None
+                           for k, o in enumerate(sweep.outputs)},
+               "errors": [{"index": i, "error": e} for i, e in failed[:20]]}
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(f"{sweep.name}: {len(done)}/{len(sweep.variants)} variants, {len(failed)} "
+              f"failed; table {sweep.output}")
+        for o, mm in summary["outputs"].items():
+            if mm:
+                print(f"  {o}: {mm['min']:.6g} .. {mm['max']:.6g}")
+        for i, e in failed[:10]:
+            print(f"  variant {i} failed: {e}")
+    return 0

@@ -1,0 +1,156 @@
+"""The sweep file (docs/sweeps.md) and the variants it asks for."""
+
+import copy
+import itertools
+import os
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ModelError
+from ..model.load import _Reader, read_raw
+from ..model.yamlio import read_yaml
+
+SWEEP_KEYS = {"cranefe", "sweep", "base", "parameters", "sampling", "outputs", "modes",
+              "output"}
+OUTPUT = re.compile(r"^(frequency_hz|omega|period_s|damping_ratio)\.([1-9][0-9]*)$|^dofs$")
+
+
+@dataclass(frozen=True)
+class Parameter:
+    name: str                 # the path as written, "ropes.hoist.EA"
+    path: tuple               # keys (ints index lists)
+    values: tuple = None      # explicit values, or
+    low: float = None         # a range
+    high: float = None
+    count: int = None         # grid points of a range
+    log: bool = False
+
+
+@dataclass(frozen=True)
+class Sweep:
+    name: str
+    file: str
+    text: str
+    raw: tuple                # read_raw() of the base: (model_data, file, text, scene, file)
+    parameters: tuple
+    variants: np.ndarray      # (n, p) parameter values of every variant
+    outputs: tuple
+    modes: int                # modes computed per variant
+    output: str               # HDF5 table path
+
+
+def load_sweep(path):
+    file = str(path)
+    data, text = read_yaml(path)
+    r = _Reader(file)
+    if not isinstance(data, dict):
+        r.fail(None, "a sweep file is a mapping that starts with 'cranefe: 1'")
+    r.keys(data, "", SWEEP_KEYS, required=("cranefe", "base", "parameters", "outputs"))
+    r.version(data)
+    folder = os.path.dirname(os.path.abspath(file))
+    base = data["base"]
+    if not isinstance(base, str) or not os.path.isfile(os.path.join(folder, base)):
+        r.fail("base", f"base model or scene {base!r} not found; give its path relative "
+               "to the sweep file")
+    raw = read_raw(os.path.join(folder, base))
+    params = tuple(_parameter(name, spec, raw[0], r)
+                   for name, spec in r.mapping(data["parameters"], "parameters").items())
+    if not params:
+        r.fail("parameters", "name at least one parameter, e.g. ropes.hoist.EA: "
+               "{values: [1.0e7, 2.0e7]}")
+    outputs = tuple(r.listing(data["outputs"], "outputs", min_len=1))
+    for k, o in enumerate(outputs):
+        if not isinstance(o, str) or not OUTPUT.match(o):
+            r.fail(f"outputs[{k}]", f"unknown output {o!r}; use frequency_hz.K, omega.K, "
+                   "period_s.K, damping_ratio.K (K = 1 for the first elastic mode) or dofs")
+    needed = max([int(o.split(".")[1]) for o in outputs if "." in o] + [1])
+    modes = r.integer(data.get("modes", needed), "modes", minimum=needed)
+    variants = _variants(params, data.get("sampling", {"method": "grid"}), r)
+    out = data.get("output", os.path.splitext(os.path.basename(file))[0] + ".h5")
+    if not isinstance(out, str):
+        r.fail("output", "must be the path of the HDF5 table to write")
+    return Sweep(str(data.get("sweep", os.path.basename(file))), file, text, raw, params,
+                 variants, outputs, modes, os.path.join(folder, out))
+
+
+def _parameter(name, spec, model_data, r):
+    e = f"parameters.{name}"
+    path = tuple(int(p) if p.isdigit() else p for p in name.split("."))
+    target = model_data
+    for k, key in enumerate(path):
+        ok = (isinstance(target, dict) and key in target) or \
+            (isinstance(target, list) and isinstance(key, int) and key < len(target))
+        if not ok:
+            r.fail(e, f"the base model has no '{'.'.join(map(str, path[:k + 1]))}'; a "
+                   "parameter is a path into the model file, e.g. ropes.hoist.EA or masses.B")
+        target = target[key]
+    if isinstance(target, bool) or not isinstance(target, (int, float)):
+        r.fail(e, f"addresses {type(target).__name__} {target!r}, not a number; address "
+               "the number itself (e.g. masses.B.mass)")
+    r.keys(spec, e, {"values", "range", "count", "scale"})
+    if "values" in spec:
+        vals = r.listing(spec["values"], f"{e}.values", min_len=1)
+        return Parameter(name, path, tuple(r.number(v, f"{e}.values[{i}]")
+                                           for i, v in enumerate(vals)))
+    if "range" not in spec:
+        r.fail(e, "give 'values: [...]' or 'range: [low, high]' (with 'count' for a grid)")
+    rng = r.listing(spec["range"], f"{e}.range", min_len=2)
+    lo, hi = r.number(rng[0], f"{e}.range[0]"), r.number(rng[1], f"{e}.range[1]")
+    if len(rng) != 2 or not lo < hi:
+        r.fail(f"{e}.range", "must be [low, high] with low < high")
+    log = spec.get("scale", "linear") == "log"
+    if spec.get("scale", "linear") not in ("linear", "log") or (log and lo <= 0):
+        r.fail(f"{e}.scale", "is linear or log (log needs a positive range)")
+    count = r.integer(spec["count"], f"{e}.count", minimum=1) if "count" in spec else None
+    return Parameter(name, path, None, lo, hi, count, log)
+
+
+def _grid(p):
+    if p.values is not None:
+        return np.array(p.values)
+    if p.count is None:
+        raise ValueError(p.name)
+    return np.geomspace(p.low, p.high, p.count) if p.log else \
+        np.linspace(p.low, p.high, p.count)
+
+
+def _variants(params, sampling, r):
+    r.keys(sampling, "sampling", {"method", "samples", "seed"})
+    method = sampling.get("method", "grid")
+    if method == "grid":
+        for p in params:
+            if p.values is None and p.count is None:
+                r.fail(f"parameters.{p.name}", "a grid needs 'count' with a range")
+        return np.array(list(itertools.product(*(_grid(p) for p in params))), dtype=float)
+    if method not in ("random", "lhs"):
+        r.fail("sampling.method", f"{method!r} is not grid, random or lhs")
+    n = r.integer(sampling.get("samples", 100), "sampling.samples", minimum=1)
+    seed = r.integer(sampling.get("seed", 0), "sampling.seed", minimum=0)
+    if method == "random":
+        u = np.random.default_rng(seed).random((n, len(params)))
+    else:
+        from scipy.stats import qmc
+        u = qmc.LatinHypercube(d=len(params), seed=seed).random(n)
+    cols = []
+    for k, p in enumerate(params):
+        if p.values is not None:         # choose among the values
+            cols.append(np.array(p.values)[np.minimum((u[:, k] * len(p.values)).astype(int),
+                                                      len(p.values) - 1)])
+        elif p.log:
+            cols.append(np.exp(np.log(p.low) + u[:, k] * np.log(p.high / p.low)))
+        else:
+            cols.append(p.low + u[:, k] * (p.high - p.low))
+    return np.column_stack(cols)
+
+
+def apply(model_data, parameters, values):
+    """A copy of the raw model data with each parameter set to its value."""
+    data = copy.deepcopy(model_data)
+    for p, v in zip(parameters, values):
+        target = data
+        for key in p.path[:-1]:
+            target = target[key]
+        target[p.path[-1]] = float(v)
+    return data
