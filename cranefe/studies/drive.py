@@ -1,7 +1,5 @@
 """The simplified drive reduction (Heletiy 2016, eq. 10) against the coupled drive."""
 
-import csv
-import os
 import time
 from dataclasses import replace
 
@@ -10,14 +8,13 @@ import numpy as np
 from ..cases import two_mass_hoist
 from ..model import load
 from ..modal import drive_reduction, modes
+from ._common import pyplot, save, write_csv
 
 DESCRIPTION = "drive: reduced vs coupled: frequency error vs drive inertia, and its cost"
 
 
 def run(outdir, quick=False):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     ratios = np.logspace(-2, 2, 5 if quick else 17)      # J / (m r^2)
     rows = []
     for q in ratios:
@@ -38,12 +35,7 @@ def run(outdir, quick=False):
                      "coupled_vs_exact": coupled.omega[~coupled.rigid][0] /
                      exact["omega"][0] - 1,
                      "time_coupled_s": t_c, "time_reduced_s": t_r})
-    path = os.path.join(outdir, "drive_reduction.csv")
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: f"{v:.6e}" for k, v in r.items()})
+    path = write_csv(outdir, "drive_reduction.csv", rows)
     fig, ax = plt.subplots(figsize=(6.5, 4))
     ax.loglog(ratios, [-r["error_w"] for r in rows], "o-", label="reduced vs coupled, w")
     ax.loglog(ratios, [-r["formula_w2"] for r in rows], "--",
@@ -52,8 +44,4 @@ def run(outdir, quick=False):
     ax.set_ylabel("relative frequency error of drive: reduced")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
-    fig.tight_layout()
-    png = os.path.join(outdir, "drive_reduction.png")
-    fig.savefig(png, dpi=110)
-    plt.close(fig)
-    return [path, png]
+    return [path, save(fig, outdir, "drive_reduction.png")]

@@ -1,7 +1,5 @@
 """Dense and sparse eigensolvers on a chain with exactly known discrete frequencies."""
 
-import csv
-import os
 import time
 
 import numpy as np
@@ -9,15 +7,14 @@ import numpy as np
 from ..cases import spring_chain
 from ..model import load
 from ..modal import modes
+from ._common import pyplot, save, write_csv
 
 DESCRIPTION = "dense vs sparse eigensolvers: error and time vs size"
 COUNT = 10
 
 
 def run(outdir, quick=False):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     sizes = (50, 200) if quick else (50, 100, 200, 500, 1000, 1500, 3000, 10000)
     rows = []
     for N in sizes:
@@ -34,13 +31,8 @@ def run(outdir, quick=False):
             row[f"{solver}_s"] = time.perf_counter() - t0
             row[f"{solver}_error"] = float(np.max(np.abs(r.omega[:COUNT] / w - 1)))
         rows.append(row)
-    path = os.path.join(outdir, "eigensolvers.csv")
-    keys = ["dofs", "dense_error", "dense_s", "sparse_error", "sparse_s"]
-    with open(path, "w", newline="") as fh:
-        wr = csv.DictWriter(fh, fieldnames=keys)
-        wr.writeheader()
-        for r in rows:
-            wr.writerow({k: (f"{r[k]:.4e}" if k != "dofs" else r[k]) for k in keys})
+    path = write_csv(outdir, "eigensolvers.csv", rows,
+                     ["dofs", "dense_error", "dense_s", "sparse_error", "sparse_s"])
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     for solver in ("dense", "sparse"):
         d = [r["dofs"] for r in rows]
@@ -54,8 +46,4 @@ def run(outdir, quick=False):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
     fig.suptitle("Eigensolvers against the exact frequencies of a discrete chain")
-    fig.tight_layout()
-    png = os.path.join(outdir, "eigensolvers.png")
-    fig.savefig(png, dpi=110)
-    plt.close(fig)
-    return [path, png]
+    return [path, save(fig, outdir, "eigensolvers.png")]

@@ -1,7 +1,6 @@
 """Large lattice cranes: cranefe's whole `modes` process against a bare floor script and
 OpenSeesPy, measured in one run, with the frequencies compared."""
 
-import csv
 import json
 import os
 import subprocess
@@ -10,6 +9,8 @@ import tempfile
 import time
 
 import numpy as np
+
+from ._common import pyplot, save, write_csv
 
 DESCRIPTION = "1e3..1e5 DOFs: cranefe vs the floor (scipy) vs OpenSeesPy, whole processes"
 COUNT = 20
@@ -43,10 +44,6 @@ def _opensees_available():
 
 
 def run(outdir, quick=False):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from ..generate import panels_for, to_yaml, tower_crane, with_meshes
     sizes = (1000, 3000) if quick else (1000, 10000, 100000)
     have_ops = _opensees_available()
@@ -93,13 +90,8 @@ def run(outdir, quick=False):
             "max_rel_diff"] + [k for k in rows[0] if k not in
                                ("dofs", "cranefe_s", "floor_s", "opensees_s", "ratio_floor",
                                 "ratio_opensees", "max_rel_diff")]
-    path = os.path.join(outdir, "performance.csv")
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k]) for k in keys})
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    path = write_csv(outdir, "performance.csv", rows, keys)
+    fig, ax = pyplot().subplots(figsize=(7, 4.5))
     d = [r["dofs"] for r in rows]
     for key, label in (("cranefe_s", "cranefe modes (YAML)"),
                        ("cranefe_mesh_s", "cranefe modes (mesh files)"),
@@ -111,8 +103,4 @@ def run(outdir, quick=False):
     ax.set_title("Lattice tower crane: cost of the modes, whole processes")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
-    fig.tight_layout()
-    png = os.path.join(outdir, "performance.png")
-    fig.savefig(png, dpi=110)
-    plt.close(fig)
-    return [path, png]
+    return [path, save(fig, outdir, "performance.png")]

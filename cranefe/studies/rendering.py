@@ -1,11 +1,12 @@
 """What images cost: `cranefe modes` of the tower crane with and without --images."""
 
-import csv
 import os
 import subprocess
 import sys
 import tempfile
 import time
+
+from ._common import pyplot, save, write_csv
 
 DESCRIPTION = "time of rendering the tower crane's mode images vs. the modes alone"
 MODEL = os.path.join(os.path.dirname(__file__), "..", "..", "models",
@@ -23,9 +24,7 @@ def _wall(args, repeat):
 
 
 def run(outdir, quick=False):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     model = os.path.abspath(MODEL)
     repeat = 1 if quick else 3
     rows = []
@@ -51,18 +50,10 @@ def run(outdir, quick=False):
         render_modes(os.path.join(tmp, "b"), m, s.dofs, r)
         t_warm = time.perf_counter() - t0
         rows.append((f"{len(r.omega)} images in one process, warm", t_warm, len(r.omega)))
-    csv_path = os.path.join(outdir, "rendering.csv")
-    with open(csv_path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["case", "wall_time_s", "images"])
-        for case, t, n in rows:
-            w.writerow([case, f"{t:.4f}", n])
+    csv_path = write_csv(outdir, "rendering.csv",
+                         [{"case": c, "wall_time_s": t, "images": n} for c, t, n in rows])
     fig, ax = plt.subplots(figsize=(8, 3.5))
     ax.barh([r[0] for r in rows][::-1], [r[1] for r in rows][::-1], color="#4c72b0")
     ax.set_xlabel("wall time [s] (best of %d)" % repeat)
     ax.set_title("Hammerhead tower crane: cost of mode images (off-screen pyvista)")
-    fig.tight_layout()
-    png = os.path.join(outdir, "rendering.png")
-    fig.savefig(png, dpi=110)
-    plt.close(fig)
-    return [csv_path, png]
+    return [csv_path, save(fig, outdir, "rendering.png")]

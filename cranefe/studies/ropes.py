@@ -1,7 +1,5 @@
 """Rope elements per fall: frequency error against exact solutions, and its cost."""
 
-import csv
-import os
 import time
 from dataclasses import replace
 
@@ -10,6 +8,7 @@ import numpy as np
 from ..cases import ROPE_CASES, matched
 from ..model import load
 from ..modal import modes
+from ._common import pyplot, save, write_csv
 
 DESCRIPTION = "rope elements per fall (N): error vs exact solutions and time"
 MODES = 3
@@ -56,24 +55,14 @@ def fitted_orders(rows):
 
 
 def run(outdir, quick=False):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     rows = measure(quick)
     orders = fitted_orders(rows)
-    path = os.path.join(outdir, "rope_convergence.csv")
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.6e}" if isinstance(v, float) else v) for k, v in r.items()})
-    opath = os.path.join(outdir, "rope_convergence_orders.csv")
-    with open(opath, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["case", "mass"] + [f"order_mode{k}" for k in range(1, MODES + 1)])
-        for (case, mass), o in orders.items():
-            w.writerow([case, mass] + [f"{x:.3f}" for x in o])
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    path = write_csv(outdir, "rope_convergence.csv", rows)
+    opath = write_csv(outdir, "rope_convergence_orders.csv", [
+        {"case": case, "mass": mass, **{f"order_mode{k + 1}": round(float(x), 3)
+                                        for k, x in enumerate(o)}}
+        for (case, mass), o in orders.items()])
+    fig, axes = pyplot().subplots(1, 2, figsize=(11, 4.2))
     for case in ROPE_CASES:
         for mass, ls in (("consistent", "-"), ("lumped", "--")):
             sel = [r for r in rows if r["case"] == case and r["mass"] == mass]
@@ -88,8 +77,4 @@ def run(outdir, quick=False):
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=7)
     fig.suptitle("Rope elements: error against exact solutions, and what it costs")
-    fig.tight_layout()
-    png = os.path.join(outdir, "rope_convergence.png")
-    fig.savefig(png, dpi=110)
-    plt.close(fig)
-    return [path, opath, png]
+    return [path, opath, save(fig, outdir, "rope_convergence.png")]

@@ -1,9 +1,10 @@
 """Sweep throughput: variants per second of a realistic crane, serial and parallel."""
 
-import csv
 import os
 import tempfile
 import time
+
+from ._common import write_csv
 
 DESCRIPTION = "sweep throughput: serial loop, 1 and 2 worker processes, Dask, DOF-map reuse"
 MODEL = os.path.join(os.path.dirname(__file__), "..", "..", "models",
@@ -54,11 +55,8 @@ def run(outdir, quick=False):
                              time.perf_counter() - t0))
         except ImportError:
             pass
-    path = os.path.join(outdir, "sweep_throughput.csv")
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["engine", "variants", "seconds", "variants_per_s", "speedup_vs_serial"])
-        base = rows[1][1] / rows[1][2]
-        for label, n, t in rows:
-            w.writerow([label, n, f"{t:.3f}", f"{n / t:.1f}", f"{n / t / base:.2f}"])
-    return [path]
+    base = rows[1][1] / rows[1][2]
+    return [write_csv(outdir, "sweep_throughput.csv", [
+        {"engine": label, "variants": n, "seconds": round(t, 3),
+         "variants_per_s": round(n / t, 1), "speedup_vs_serial": round(n / t / base, 2)}
+        for label, n, t in rows])]

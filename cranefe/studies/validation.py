@@ -1,7 +1,6 @@
 """Every validation case (closed form, paper, peer program) with its measured error:
 results/validation.csv and docs/validation.md (`cranefe study validation`)."""
 
-import csv
 import os
 import subprocess
 import sys
@@ -13,6 +12,7 @@ import numpy as np
 from .. import cases
 from ..model import load
 from ..modal import drive_reduction, modes
+from ._common import write_csv
 
 DESCRIPTION = "the table of validation cases and their measured errors"
 G = cases.G
@@ -177,13 +177,7 @@ def run(outdir, quick=False):
             err = float(np.max(np.abs(np.asarray(computed) / np.asarray(exact) - 1)))
             rows.append({"case": name, "kind": kind, "reference": reference,
                          "max_relative_error": err})
-    path = os.path.join(outdir, "validation.csv")
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        for r in rows:
-            w.writerow({**r, "max_relative_error": f"{r['max_relative_error']:.2e}"})
-    written = [path]
+    written = [write_csv(outdir, "validation.csv", rows)]
     docs = os.path.join(os.path.dirname(os.path.abspath(outdir)), "docs")
     if os.path.isdir(docs):
         md = os.path.join(docs, "validation.md")
