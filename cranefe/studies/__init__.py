@@ -7,4 +7,5 @@ measured against exact answers; times are ratios measured in one run where possi
 
 import pkgutil
 
-NAMES = tuple(sorted(m.name for m in pkgutil.iter_modules(__path__) if not m.name.startswith("_")))
+NAMES = tuple(sorted(m.name for m in pkgutil.iter_modules(__path__)
+                     if not m.name.startswith("_")))
