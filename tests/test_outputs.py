@@ -119,8 +119,8 @@ def test_animation_gif(tmp_path):
     path = os.path.join(ROOT, "models", "two_mass_hoist.yaml")
     assert main(["modes", path, "--count", "2", "--images", str(tmp_path), "--animate",
                  "--image-size", "200x160"]) == 0
-    gif = Image.open(tmp_path / "mode_02.gif")
-    assert gif.n_frames > 10 and gif.size == (200, 160)
+    with Image.open(tmp_path / "mode_02.gif") as gif:
+        assert gif.n_frames > 10 and gif.size == (200, 160)
 
 
 def test_animate_without_images_is_an_input_error(capsys):

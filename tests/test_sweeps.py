@@ -70,7 +70,8 @@ def test_interrupted_sweep_resumes_with_the_missing_variants(tmp_path):
     first = run_sweep(sweep, workers=0, limit=7)
     assert len(first) == 7 and read_table(sweep.output).index.size == 7
     rest = run_sweep(sweep, workers=0)
-    lines = open(sweep.output + ".journal").read().splitlines()
+    with open(sweep.output + ".journal") as fh:
+        lines = fh.read().splitlines()
     assert len(rest) == 20 and len(lines) == 20           # nothing computed twice
     assert sorted(json.loads(x)["index"] for x in lines) == list(range(20))
 
