@@ -117,3 +117,41 @@ effects: {{sway: false}}
     return text, {"omega": np.array([np.sqrt(k * (falls**2 / m + R**2 / J))]),
                   "omega_reduced": np.array([np.sqrt(falls**2 * k / m)]),
                   "error_w2": m * r**2 / (m * r**2 + J)}
+
+
+def double_pendulum(m1=1500.0, m2=700.0, l1=10.0, l2=4.0):
+    """Two point masses on two ropes in series: the linearised double pendulum,
+    m1 l1 l2 w^4 - (m1 + m2) g (l1 + l2) w^2 + (m1 + m2) g^2 = 0 (exact also for elastic
+    ropes: hanging vertically, their stretch does not couple with the swing)."""
+    text = f"""cranefe: 1
+name: double pendulum
+plane: xz
+nodes: {{S: [0, 0, 20], A: [0, 0, {20 - l1}], B: [0, 0, {20 - l1 - l2}]}}
+ground: [S]
+masses: {{A: {m1}, B: {m2}}}
+ropes:
+  upper: {{EA: 5.0e7, path: [S, A]}}
+  lower: {{EA: 5.0e7, path: [A, B]}}
+"""
+    w2 = np.sort(np.roots([m1 * l1 * l2, -(m1 + m2) * G * (l1 + l2), (m1 + m2) * G**2]))
+    return text, {"omega": np.sqrt(w2)}
+
+
+def loaded_column(L=12.0, M=2.0e4, E=2.1e11, A=1.0e-2, I=2.0e-4, elements=16):
+    """A massless clamped column with a top mass M under its weight P = M g: P-delta.
+    Tip stiffness under compression, exact: k = P / (L (tan kL / kL - 1)), k = sqrt(P/EI)."""
+    text = f"""cranefe: 1
+name: loaded column
+plane: xz
+nodes: {{O: [0, 0, 0], T: [0, 0, {L}]}}
+ground: [O]
+masses: {{T: {M}}}
+members:
+  col: {{type: beam, nodes: [O, T], E: {E}, A: {A}, Iy: {I}, rho: 0, elements: {elements}}}
+effects: {{structure: flexible}}
+"""
+    P = M * G
+    kl = np.sqrt(P / (E * I)) * L
+    k = P / (L * (np.tan(kl) / kl - 1))
+    return text, {"omega": np.array([np.sqrt(k / M)]),
+                  "omega_no_sway": np.array([np.sqrt(3 * E * I / L**3 / M)])}

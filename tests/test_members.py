@@ -90,24 +90,14 @@ def k_compressed(EI, L, P):
 
 def test_p_delta_lowers_a_loaded_column_as_the_closed_form(model_from):
     # massless vertical column, clamped, top mass M: w^2 = k(P)/M with P = M g
-    L, M = 12.0, 2.0e4               # P = M g is 0.27 of the Euler load pi^2 EI / 4 L^2
-    EI = E * I
-    text = f"""
-    cranefe: 1
-    plane: xz
-    nodes: {{O: [0, 0, 0], T: [0, 0, {L}]}}
-    ground: [O]
-    masses: {{T: {M}}}
-    members:
-      col: {{type: beam, nodes: [O, T], E: {E}, A: {A}, Iy: {I}, rho: 0, elements: 16}}
-    effects: {{structure: flexible}}
-    """
+    from cranefe.cases import loaded_column
+    text, exact = loaded_column()      # P = M g is 0.27 of the Euler load pi^2 EI / 4 L^2
     model = model_from(text)
     on, off = modes(model), modes(model, replace(model.effects, sway=False))
     w_on = on.omega[0]
-    assert off.omega[0] == pytest.approx(np.sqrt(3 * EI / L**3 / M), rel=1e-9)
+    assert off.omega[0] == pytest.approx(exact["omega_no_sway"][0], rel=1e-9)
     # the cubic geometric stiffness converges at O(h^2) to the exact k(P): 16 elements
-    assert w_on == pytest.approx(np.sqrt(k_compressed(EI, L, M * G) / M), rel=2e-6)
+    assert w_on == pytest.approx(exact["omega"][0], rel=2e-6)
     assert w_on < off.omega[0]
 
 

@@ -59,20 +59,9 @@ def pendulum_cases():
         yield ("single pendulum" if falls == 1 else f"pendulum on a {falls}-fall tackle",
                "closed form", "sqrt(g/l)",
                r.omega[:1], np.array([np.sqrt(G / l)]))
-    m1, m2, l1, l2 = 1500.0, 700.0, 10.0, 4.0
-    r = _solve(f"""
-        cranefe: 1
-        plane: xz
-        nodes: {{S: [0, 0, 20], A: [0, 0, {20 - l1}], B: [0, 0, {20 - l1 - l2}]}}
-        ground: [S]
-        masses: {{A: {m1}, B: {m2}}}
-        ropes:
-          upper: {{EA: 5.0e7, path: [S, A]}}
-          lower: {{EA: 5.0e7, path: [A, B]}}
-        """)
-    w2 = np.sort(np.roots([m1 * l1 * l2, -(m1 + m2) * G * (l1 + l2), (m1 + m2) * G**2]))
+    text, ex = cases.double_pendulum()
     yield ("double pendulum", "closed form", "quartic m1 l1 l2 w^4 - ... = 0",
-           r.omega[:2], np.sqrt(w2))
+           _solve(text).omega[:2], ex["omega"])
 
 
 def chain_cases():
@@ -131,22 +120,9 @@ def structure_cases():
     bl = np.array([1.875104068711961, 4.694091132974175, 7.854757438237613])
     yield ("cantilever beam, 16 elements", "closed form", "beta_n L = 1.8751, 4.6941, 7.8548",
            r.omega[:3], bl**2 * np.sqrt(E * I / (rho * A)) / 100)
-    L, M = 12.0, 2.0e4
-    r = _solve(f"""
-        cranefe: 1
-        plane: xz
-        nodes: {{O: [0, 0, 0], T: [0, 0, {L}]}}
-        ground: [O]
-        masses: {{T: {M}}}
-        members:
-          col: {{type: beam, nodes: [O, T], E: {E}, A: {A}, Iy: {I}, rho: 0, elements: 16}}
-        effects: {{structure: flexible}}
-        """)
-    P = M * G
-    kl = np.sqrt(P / (E * I)) * L
-    k = P / (L * (np.tan(kl) / kl - 1))
+    text, ex = cases.loaded_column()
     yield ("P-delta of a loaded column, 16 elements", "closed form",
-           "k(P) = P / (L (tan kL / kL - 1))", r.omega[:1], np.array([np.sqrt(k / M)]))
+           "k(P) = P / (L (tan kL / kL - 1))", _solve(text).omega[:1], ex["omega"])
 
 
 def peer_cases(quick):
