@@ -64,3 +64,52 @@ def modes_table(result, comparison=None):
 
 def _fmt_effect(v):
     return {True: "on", False: "off"}.get(v, v) if isinstance(v, bool) else str(v)
+
+
+def damping_document(result, modal=None):
+    """The JSON document of ``cranefe damping --json`` (design.md, command-line contract)."""
+    modes = []
+    for k in range(len(result.omega)):
+        m = {"index": k + 1, "frequency_hz": _num(result.omega[k] / (2 * math.pi)),
+             "omega_rad_s": _num(result.omega[k]),
+             "damping_ratio": _num(result.zeta[k]),
+             "damped_frequency_hz": _num(result.damped_omega[k] / (2 * math.pi)),
+             "log_decrement": _num(result.log_decrement[k]),
+             "coupling": _num(result.coupling[k]),
+             "weak_coupling": bool(result.criterion_holds[k])}
+        if result.exact_zeta is not None:
+            m["exact"] = {"damping_ratio": _num(result.exact_zeta[k]),
+                          "damped_frequency_hz":
+                              _num(result.exact_damped_omega[k] / (2 * math.pi))}
+            m["hysteretic"] = {"damping_ratio": _num(result.hysteretic_zeta[k]),
+                               "damped_frequency_hz":
+                                   _num(result.hysteretic_damped_omega[k] / (2 * math.pi))}
+        modes.append(m)
+    return {"model": result.model_name, "effects": result.effects, "method": result.method,
+            "dofs": modal.dofs if modal is not None else None,
+            "quasi_cyclic": list(modal.quasi_cyclic) if modal is not None else [],
+            "modes": modes, "timings_s": {k: round(v, 6) for k, v in result.timings.items()},
+            "warnings": list(result.warnings)}
+
+
+def damping_table(result):
+    exact = result.exact_zeta is not None
+    head = (f"{'mode':>5} {'f [Hz]':>10} {'zeta':>9} {'f_d [Hz]':>10} {'log dec':>8} "
+            f"{'coupling':>9}")
+    if exact:
+        head += f" {'zeta exact':>11} {'error':>8} {'zeta hyst.':>11} {'error':>8}"
+    lines = [f"{result.model_name}: damping from absorption coefficients "
+             f"(method {result.method}; decoupled estimate, Hasselman)", head,
+             "-" * len(head)]
+    for k in range(len(result.omega)):
+        row = (f"{k + 1:>5} {result.omega[k] / (2 * math.pi):>10.5g} {result.zeta[k]:>9.4g} "
+               f"{result.damped_omega[k] / (2 * math.pi):>10.5g} "
+               f"{result.log_decrement[k]:>8.4g} {result.coupling[k]:>9.2g}")
+        if exact:
+            ze, zh = result.exact_zeta[k], result.hysteretic_zeta[k]
+            rel = (lambda a, b: (a / b - 1) if b else 0.0)
+            row += (f" {ze:>11.4g} {100 * rel(result.zeta[k], ze):>7.2f}% {zh:>11.4g} "
+                    f"{100 * rel(result.zeta[k], zh):>7.2f}%")
+        lines.append(row)
+    lines += [f"warning: {w}" for w in result.warnings]
+    return "\n".join(lines)
