@@ -160,3 +160,12 @@ def test_polyharmonic_k1_equates_dissipated_power():
     dashpot = b * np.mean(v**2)
     hysteretic = np.sum(psi * 0.5 * c * a**2 * w / (2 * np.pi))
     assert dashpot == pytest.approx(hysteretic, rel=1e-3)
+
+
+def test_modes_of_a_scene_with_damping(tmp_path, capsys):
+    scene = tmp_path / "s.yaml"
+    scene.write_text(f"cranefe: 1\nmodel: {os.path.join(ROOT, 'models', 'two_mass_hoist.yaml')}"
+                     "\neffects: {damping: modal}\n")
+    assert main(["modes", str(scene), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["damping"][1]["damping_ratio"] == pytest.approx(0.2 / (4 * np.pi))

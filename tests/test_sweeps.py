@@ -30,7 +30,7 @@ base: {BASE}
 parameters:
   ropes.hoist_rope.EA: {ea}
   masses.H: {{values: [3000, 6000]}}
-outputs: [frequency_hz.2, omega.1, dofs]
+outputs: [frequency_hz.2, omega.1, dofs, damping_ratio.2]
 output: {name}.h5
 {extra}""")
     return path
@@ -48,7 +48,8 @@ def test_results_are_the_direct_analyses(tmp_path):
                         masses=replace(base.masses, mass=np.array([m])))
         r = modes(model)
         w = r.omega[~r.rigid]
-        assert row["outputs"] == pytest.approx([w[1] / (2 * np.pi), w[0], r.dofs], rel=1e-12)
+        assert row["outputs"] == pytest.approx([w[1] / (2 * np.pi), w[0], r.dofs,
+                                                0.2 / (4 * np.pi)], rel=1e-12)
 
 
 def test_processes_and_dask_give_identical_results(tmp_path):
@@ -111,8 +112,8 @@ def test_invalid_variant_is_reported_and_the_rest_finish(tmp_path, capsys):
 def test_show_and_plots(tmp_path, capsys):
     path = sweep_file(tmp_path)
     assert main(["sweep", str(path), "--workers", "0", "--plots", str(tmp_path / "p")]) == 0
-    assert sorted(os.listdir(tmp_path / "p")) == ["dofs.png", "frequency_hz_2.png",
-                                                   "omega_1.png"]
+    assert sorted(os.listdir(tmp_path / "p")) == ["damping_ratio_2.png", "dofs.png",
+                                                   "frequency_hz_2.png", "omega_1.png"]
     capsys.readouterr()
     assert main(["show", str(tmp_path / "s.h5")]) == 0
     assert "6/6 variants" in capsys.readouterr().out

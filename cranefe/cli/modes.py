@@ -29,9 +29,21 @@ def run(args):
     result.timings = {"load": t_load, **result.timings,
                       "total": time.perf_counter() - t0}
     comparison = drive_reduction(model, result) if model.effects.drive == "reduced" else None
+    results = {"modes": result}
+    if model.effects.damping != "none":        # a scene asking for damping gets it too
+        from ..damping import damping
+        results["damping"] = damping(model, model.effects.damping, system=system,
+                                     modal=result)
     if args.json:
-        print(dumps(modes_document(result, comparison)))
+        doc = modes_document(result, comparison)
+        if "damping" in results:
+            from ..report import damping_document
+            doc["damping"] = damping_document(results["damping"])["modes"]
+        print(dumps(doc))
     else:
         print(modes_table(result, comparison))
-    write_outputs(args, model, system, {"modes": result}, result)
+        if "damping" in results:
+            from ..report import damping_table
+            print(damping_table(results["damping"]))
+    write_outputs(args, model, system, results, result)
     return 0
