@@ -42,11 +42,10 @@ class Archive:
 def _result_classes():
     from .modal import ModalResult
     classes = {"ModalResult": ModalResult}
-    try:
-        from .damping import DampingResult
-        classes["DampingResult"] = DampingResult
-    except ImportError:
-        pass
+    from .damping import DampingResult
+    from .transient.integrate import TransientResult
+    classes["DampingResult"] = DampingResult
+    classes["TransientResult"] = TransientResult
     return classes
 
 

@@ -23,6 +23,8 @@ PINNED = {
     "luffing_tower_crane.yaml": 0.07883838,
     "logging_skyline.yaml": 0.19440453,
     "lattice_tower_crane.yaml": 0.22051153,
+    "two_mass_hoist_start.yaml": 2.44806889,
+    "two_mass_hoist_lift.yaml": 2.44806889,
 }
 
 
@@ -49,3 +51,11 @@ def test_dense_and_sparse_solvers_agree(path):
     # both solve the same pencil; shift-invert Lanczos converges to ~1e-10 relative
     assert sparse.omega == pytest.approx(dense.omega[:k], rel=1e-9, abs=1e-9)
     assert sparse.rigid.tolist() == dense.rigid[:k].tolist()
+
+
+@pytest.mark.parametrize("path", [m for m in MODELS if "type: transient" in open(m).read()],
+                         ids=os.path.basename)
+def test_transient_examples(path, capsys):
+    assert main(["simulate", path, "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert 1.0 < doc["dynamic_factor"][next(iter(doc["dynamic_factor"]))] < 2.0

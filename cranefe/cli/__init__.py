@@ -10,7 +10,8 @@ import sys
 from .. import __version__
 from ..errors import AnalysisError, ModelError
 
-COMMANDS = ("modes", "damping", "check", "show", "study", "generate", "sweep")
+COMMANDS = ("modes", "damping", "simulate", "check", "show", "study", "generate",
+            "sweep")
 
 
 def _parser():

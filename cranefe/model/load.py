@@ -74,7 +74,7 @@ def build(model_data, model_file, model_text="", scene_data=None, scene_file=Non
     effects = _effects(scene_data.get("effects"), model.effects, r, "effects")
     analysis = _analysis(scene_data.get("analysis", {}), r)
     scene = scene_data.get("scene")
-    return _replace(model, effects=effects, analysis=analysis,
+    return _replace(model, effects=effects, analysis=analysis, scene_file=scene_file,
                     scene=str(scene) if scene is not None else os.path.basename(scene_file))
 
 

@@ -153,6 +153,7 @@ class Model:
     effects: Effects
     analysis: dict = field(default_factory=dict)   # from a scene; {} for a model
     scene: str = None                               # scene name, if loaded from one
+    scene_file: str = None                          # and its path
 
     @property
     def node_index(self):

@@ -1,0 +1,1 @@
+"""Transient simulation of scenes: hoist start, lifting off the ground (docs/transient.md)."""
