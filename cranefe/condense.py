@@ -158,7 +158,11 @@ def condense(system, method="schur"):
         # a motion the elements resist by less than the resolution of the pattern
         # (NULL_TOL) is treated as free; say so when K itself still sees it
         w2 = np.einsum("ij,ij->j", rigid, K @ rigid)
-        for k in np.flatnonzero(w2 > 1e-24 * max(np.abs(np.diag(K)).max(), 1e-300)):
+        # relative to the stiffness the motion meets on the diagonal: round-off gives
+        # ~1e-16, a resolvable but weak restraint (below the pattern's 1e-10) more
+        touched = np.einsum("ij,ij->j", rigid, np.abs(np.diag(K))[:, None] * rigid)
+        weak = w2 > 1e-13 * np.maximum(touched, 1e-300)
+        for k in np.flatnonzero(weak):
             v = np.abs(rigid[:, k])
             names = ", ".join(labels[i] for i in np.argsort(-v)[:2])
             warnings.append(f"{names}: nearly unrestrained (its stiffness is below 1e-10 of "

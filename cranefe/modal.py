@@ -152,9 +152,9 @@ def _sparse(system, k):
     K, M = system.K.tocsc(), system.M.tocsc()
     a, b = massless_split(system.M)
     Ma = M[a][:, a]
-    # shift: negative (K - sigma M is positive definite with quasi-cyclic motions) and
-    # small next to the lowest eigenvalue, bounded above by every Rayleigh quotient
-    # K_ii / M_ii; a shift near the mean ratio would blur the low modes together
+    # shift: negative (K - sigma M is positive definite with quasi-cyclic motions), of
+    # the order of the smallest Rayleigh quotient K_ii / M_ii rather than the mean one,
+    # which would blur the low modes together (this sets the speed of convergence only)
     ratio = K.diagonal()[a] / Ma.diagonal()
     ratio = ratio[ratio > 0].min() if np.any(ratio > 0) else 1.0
     sigma = -1e-3 * ratio

@@ -160,9 +160,16 @@ def _solve(K, f, P, dofs, model):
     if n > STATIC_DENSE_MAX:
         try:
             return spla.splu(K.tocsc()).solve(f)
-        except RuntimeError as exc:
-            raise AnalysisError(f"static solution failed ({exc}): the model is a "
-                                "mechanism under gravity") from None
+        except RuntimeError:
+            pass
+        # free motions (a free body, an unrestrained slewing axis): a relative shift of
+        # 1e-10 of the diagonal leaves them unloaded if gravity does not load them
+        d = np.abs(K.diagonal())
+        q = spla.splu((K + sp.diags(1e-10 * np.where(d > 0, d, d.max()))).tocsc()).solve(f)
+        if np.linalg.norm(K @ q - f) > 1e-6 * (np.linalg.norm(f) or 1.0):
+            raise ModelError("not in static equilibrium: gravity moves a part that nothing "
+                             "restrains; support it with a joint, rope or spring", model.file)
+        return q
     N = null_space(P().toarray())
     Kd = K.toarray()
     if N.shape[1]:

@@ -599,8 +599,10 @@ def _rope(name, rp, r, names, coords, scale, node_names, drums):
         points.extend([p, current] * (n // 2) + ([p] if n % 2 else []))
         if n % 2:          # odd tackle: continues at X; even: back at P
             current = p
-        elif k == len(path) - 1 and current[0] == "drum":
-            pass           # even tackle back to a drum: both ends on it
+        elif k < len(path) - 1 and current[0] == "drum":
+            r.fail(pe, f"this even tackle brings the rope back to drum "
+                   f"'{drums[current[1]].name}' and the path goes on; a drum is a rope end "
+                   "(make the tackle odd, or end the path here)")
     ends = [points[0], points[-1]]
     end_drums = tuple(p[1] for p in ends if p[0] == "drum")
     return Rope(
