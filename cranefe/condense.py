@@ -159,9 +159,9 @@ def condense(system, method="schur"):
         # (NULL_TOL) is treated as free; say so when K itself still sees it
         w2 = np.einsum("ij,ij->j", rigid, K @ rigid)
         # relative to the stiffness the motion meets on the diagonal: round-off gives
-        # ~1e-16, a resolvable but weak restraint (below the pattern's 1e-10) more
+        # ~1e-20, a weak restraint below the pattern's resolution (1e-10) far more
         touched = np.einsum("ij,ij->j", rigid, np.abs(np.diag(K))[:, None] * rigid)
-        weak = w2 > 1e-13 * np.maximum(touched, 1e-300)
+        weak = w2 > 1e-15 * np.maximum(touched, 1e-300)
         for k in np.flatnonzero(weak):
             v = np.abs(rigid[:, k])
             names = ", ".join(labels[i] for i in np.argsort(-v)[:2])

@@ -146,3 +146,102 @@ def transient_table(result):
     lines += [f"  event: {e}" for e in result.events[:10]]
     lines += [f"warning: {w}" for w in result.warnings]
     return "\n".join(lines)
+
+
+def _finite_or_none(values, k):
+    return None if values is None else _num(values[k])
+
+
+def damping_modes_document(result):
+    """The JSON document of ``cranefe damping --json``: the keys of ``cranefe modes``
+    (index as there, rigid modes included) plus, per mode, the decoupled estimate
+    (``damping_ratio``, ``damped_frequency_hz``, ``log_decrement``), Hasselman's
+    ``coupling`` (largest coefficient, ``coupled_with`` that mode), ``weak_coupling``,
+    ``predicted_error``, and where solved ``exact`` (viscous) and ``hysteretic``
+    (complex stiffness) objects with their relative error."""
+    from .damping import ERROR_TOL, KAPPA
+    err_v, err_h = result.error_viscous, result.error_hysteretic
+    dec_v, dec_h = result.exact_log_decrement, result.hysteretic_log_decrement
+    modes = []
+    for k in range(len(result.omega)):
+        w, rigid = float(result.omega[k]), bool(result.rigid[k])
+        m = {"index": k + 1, "frequency_hz": _num(w / (2 * math.pi)),
+             "omega_rad_s": _num(w), "period_s": None if rigid else _num(2 * math.pi / w),
+             "rigid": rigid,
+             "damping_ratio": _num(result.zeta[k]),
+             "damped_frequency_hz": _num(result.damped_omega[k] / (2 * math.pi)),
+             "log_decrement": _num(result.log_decrement[k]),
+             "coupling": _num(result.coupling[k]),
+             "coupled_with": (int(result.coupled_with[k]) + 1
+                              if result.coupled_with[k] >= 0 else None),
+             "weak_coupling": bool(result.criterion_holds[k]),
+             "predicted_error": _num(result.predicted_error[k]),
+             "absorbed_most_by": ({"element": result.dominant_element[k],
+                                   "share": _num(result.dominant_share[k])}
+                                  if result.dominant_element[k] else None)}
+        if result.exact_zeta is not None and not np.isnan(result.exact_zeta[k]):
+            m["exact"] = {"damping_ratio": _num(result.exact_zeta[k]),
+                          "damped_frequency_hz":
+                              _num(result.exact_damped_omega[k] / (2 * math.pi)),
+                          "log_decrement": None if rigid else _num(dec_v[k]),
+                          "relative_error": _finite_or_none(err_v, k)}
+            m["hysteretic"] = {"damping_ratio": _num(result.hysteretic_zeta[k]),
+                               "damped_frequency_hz":
+                                   _num(result.hysteretic_damped_omega[k] / (2 * math.pi)),
+                               "log_decrement": None if rigid else _num(dec_h[k]),
+                               "relative_error": _finite_or_none(err_h, k)}
+        modes.append(m)
+    return {"model": result.model_name, "effects": result.effects, "dofs": result.dofs,
+            "quasi_cyclic": list(result.quasi_cyclic), "method": result.method,
+            "criterion": {"coupling_limit": KAPPA, "error_limit": ERROR_TOL,
+                          "holds": bool(np.all(result.trusted))},
+            "modes": modes,
+            "timings_s": {k: round(v, 6) for k, v in result.timings.items()},
+            "warnings": list(result.warnings)}
+
+
+def damping_modes_table(result):
+    """The table of ``cranefe damping``: per mode the decoupled estimate, the coupling
+    figure and, where solved, the exact ratios and the estimate's error against them."""
+    from .damping import KAPPA
+    exact = result.exact_zeta is not None
+    eff = ", ".join(f"{k} {_fmt_effect(v)}" for k, v in result.effects.items())
+    lines = [f"{result.model_name}: {result.dofs} coordinates ({eff})",
+             f"damping from absorption coefficients, method {result.method}: decoupled "
+             f"estimate (Heletiy eq. 16-17), Hasselman coupling (limit {KAPPA:g})"]
+    if result.quasi_cyclic:
+        lines.append("quasi-cyclic (zero-frequency) coordinates: "
+                     + ", ".join(result.quasi_cyclic))
+    head = (f"{'mode':>5} {'f [Hz]':>10} {'zeta':>10} {'f_d [Hz]':>10} {'log dec':>9} "
+            f"{'coupling':>13}")
+    if exact:
+        head += f" {'zeta exact':>11} {'error':>8} {'zeta hyst.':>11} {'error':>8}"
+    lines += [head, "-" * len(head)]
+    err_v, err_h = result.error_viscous, result.error_hysteretic
+
+    def pct(e):
+        return f"{'-':>8}" if e is None or not np.isfinite(e) else f"{100 * e:>7.2f}%"
+    for k in range(len(result.omega)):
+        f = result.omega[k] / (2 * math.pi)
+        if result.rigid[k]:
+            lines.append(f"{k + 1:>5} {0:>10.5g} {'-':>10} {'-':>10} {'-':>9} {'-':>13}  "
+                         "rigid (quasi-cyclic): no element deforms, no damping")
+            continue
+        j = result.coupled_with[k]
+        cpl = f"{result.coupling[k]:.2g}" + (f" ({j + 1})" if j >= 0 else "")
+        flag = "" if result.criterion_holds[k] else " !"
+        row = (f"{k + 1:>5} {f:>10.5g} {result.zeta[k]:>10.4g} "
+               f"{result.damped_omega[k] / (2 * math.pi):>10.5g} "
+               f"{result.log_decrement[k]:>9.4g} {cpl + flag:>13}")
+        if exact and not np.isnan(result.exact_zeta[k]):
+            row += (f" {result.exact_zeta[k]:>11.4g} {pct(err_v[k])} "
+                    f"{result.hysteretic_zeta[k]:>11.4g} {pct(err_h[k])}")
+        lines.append(row)
+    t = result.timings
+    cost = f"time: modes {t.get('modes', 0):.3g} s, decoupled {t.get('decoupled', 0):.3g} s"
+    if "exact_viscous" in t:
+        cost += (f", exact viscous {t['exact_viscous']:.3g} s, complex stiffness "
+                 f"{t['hysteretic']:.3g} s")
+    lines.append(cost)
+    lines += [f"warning: {w}" for w in result.warnings]
+    return "\n".join(lines)
