@@ -162,7 +162,7 @@ def _plot(rows, outdir):
                                ("exact_viscous_s", "--", "exact viscous"),
                                ("hysteretic_s", "-.", "complex stiffness")):
             axes[1].loglog(d, [x[key] for x in r], mk + ls, label=f"{case}: {label}")
-    axes[0].set_ylabel(f"max |relative error| of zeta, first {COUNT} modes")
+    axes[0].set_ylabel(f"max |relative error| of zeta, first {COUNT} modes (rigid incl.)")
     axes[1].set_ylabel("time [s] (best of a few)")
     for ax in axes[:2]:
         ax.set_xlabel("coordinates")
