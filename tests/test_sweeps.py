@@ -140,3 +140,28 @@ def test_bad_sweep_files(tmp_path, capsys, bad, entry):
     assert main(["sweep", str(path)]) == 2
     err = capsys.readouterr().err
     assert entry in err and "Traceback" not in err
+
+
+def test_dynamic_factor_of_a_transient_scene(tmp_path):
+    # phi2 of lifting off the ground against the closed form 1 + v w / g
+    scene = os.path.join(ROOT, "models", "two_mass_hoist_lift.yaml")
+    path = tmp_path / "phi.yaml"
+    path.write_text(f"""cranefe: 1
+base: {scene}
+parameters:
+  masses.H: {{values: [3000, 6000]}}
+outputs: [phi2.hoist_rope]
+output: phi.h5
+""")
+    done = run_sweep(load_sweep(path), workers=0)
+    base = load(BASE)
+    rope = base.ropes[0]
+    L = float(np.sum(rope.falls * np.linalg.norm(base.coords[rope.span_b] -
+                                                 base.coords[rope.span_a], axis=1))
+              + rope.extra_length)
+    for row in done.values():
+        m = row["values"][0]
+        w = np.sqrt(4 * rope.EA / L / m)
+        v = base.drums[0].radius * 2.0 / 2
+        assert row["status"] == "ok"
+        assert row["outputs"][0] == pytest.approx(1 + v * w / 9.81, rel=2e-3)

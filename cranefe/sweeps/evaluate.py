@@ -54,9 +54,18 @@ def evaluate(job):
         system = assemble(model, dofs=dofs)
         r = modes(model, count=min(count + 6, system.K.shape[0]), system=system)
         elastic = r.omega[~r.rigid]
-        damping = None
+        damping, transient = None, None
         out = []
         for name in outputs:
+            if name.startswith(("phi2.", "rope_force_max.")):
+                if transient is None:                 # the base is a transient scene
+                    from ..transient.integrate import simulate
+                    transient = simulate(model)
+                rope = name.split(".", 1)[1]
+                k = transient.rope_names.index(rope)
+                out.append(float(transient.dynamic_factor[k] if name.startswith("phi2")
+                                 else transient.rope_force_max[k]))
+                continue
             if name == "dofs":
                 out.append(float(r.dofs))
                 continue

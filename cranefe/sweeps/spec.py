@@ -14,7 +14,8 @@ from ..model.yamlio import read_yaml
 
 SWEEP_KEYS = {"cranefe", "sweep", "base", "parameters", "sampling", "outputs", "modes",
               "output"}
-OUTPUT = re.compile(r"^(frequency_hz|omega|period_s|damping_ratio)\.([1-9][0-9]*)$|^dofs$")
+OUTPUT = re.compile(r"^(frequency_hz|omega|period_s|damping_ratio)\.([1-9][0-9]*)$|^dofs$"
+                    r"|^(phi2|rope_force_max)\.[A-Za-z0-9_-]+$")
 
 
 @dataclass(frozen=True)
@@ -64,8 +65,10 @@ def load_sweep(path):
     for k, o in enumerate(outputs):
         if not isinstance(o, str) or not OUTPUT.match(o):
             r.fail(f"outputs[{k}]", f"unknown output {o!r}; use frequency_hz.K, omega.K, "
-                   "period_s.K, damping_ratio.K (K = 1 for the first elastic mode) or dofs")
-    needed = max([int(o.split(".")[1]) for o in outputs if "." in o] + [1])
+                   "period_s.K, damping_ratio.K (K = 1 for the first elastic mode), dofs, "
+                   "or with a transient scene as base phi2.ROPE, rope_force_max.ROPE")
+    needed = max([int(o.split(".")[1]) for o in outputs
+                  if "." in o and o.split(".")[1].isdigit()] + [1])
     modes = r.integer(data.get("modes", needed), "modes", minimum=needed)
     variants = _variants(params, data.get("sampling", {"method": "grid"}), r)
     out = data.get("output", os.path.splitext(os.path.basename(file))[0] + ".h5")
