@@ -46,6 +46,8 @@ def _result_classes():
     from .transient.integrate import TransientResult
     classes["DampingResult"] = DampingResult
     classes["TransientResult"] = TransientResult
+    from .luffing.analysis import LuffingResult
+    classes["LuffingResult"] = LuffingResult
     return classes
 
 

@@ -25,6 +25,8 @@ PINNED = {
     "lattice_tower_crane.yaml": 0.22051153,
     "two_mass_hoist_start.yaml": 2.44806889,
     "two_mass_hoist_lift.yaml": 2.44806889,
+    "portal_crane_luffing.yaml": 0.12870903,
+    "portal_crane_luffing_scene.yaml": 0.12870903,
 }
 
 
