@@ -262,3 +262,14 @@ def test_motor_torque_of_the_optimum_is_the_imbalance(crane):
     torque, _, Q, _ = crane.drive_terms(law, tau)
     al = law.evaluate(tau)[0]
     np.testing.assert_allclose(Q, crane.proxy("dV", al), rtol=1e-9, atol=1e-6)
+
+
+def test_sensitivity_report(result):
+    s = result.sensitivity
+    for row in s["t_k"]:                         # T_mean = S^2 / (2 t_k^2) exactly
+        assert row["T_over_base"] == pytest.approx((result.t_k / row["t_k_s"]) ** 2,
+                                                   rel=1e-12)
+    rows = s["load_mass"]
+    assert rows[0]["max_law_difference_deg"] < 1e-9     # no load: the same optimum
+    assert all(b["T_mean_with_load_J"] > a["T_mean_with_load_J"]
+               for a, b in zip(rows, rows[1:]))

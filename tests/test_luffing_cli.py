@@ -80,6 +80,7 @@ load: {mass: 16000, rope_length: 15.0}
     (("pivot: O", "pivot: B"), "analysis.pivot"),
     (("jib_tip: D", "jib_tip: X"), "analysis.jib_tip"),
     (("reach0: 30.0", "reach0: 60.0"), "analysis.reach0"),
+    (("reach0: 30.0", "alpha0_deg: 95.0"), "analysis.alpha0_deg"),
     (("reach0: 30.0", "alpha0_deg: 50\nreach0: 30.0"), "analysis"),
     (("load: {mass: 16000, rope_length: 15.0}", "load: {mass: 16000}"), "analysis.load"),
     (("t_k: 25.0", "t_k: 25.0\nspeed: 3"), "analysis.speed"),

@@ -171,11 +171,19 @@ class Luffing:
             raise ModelError("the start and end of the luffing coincide", file, "analysis")
         lo, hi = sorted((self.alpha0, self.alphak))
         margin = 0.05 * (hi - lo)
+        from ..errors import AnalysisError
+        for value, end in ((self.alpha0, scene.start), (self.alphak, scene.end)):
+            try:
+                self.linkage.cover(value, value)
+            except AnalysisError as exc:
+                raise ModelError(f"alpha = {np.degrees(value):.2f} deg is beyond the "
+                                 f"linkage's range ({exc})", file,
+                                 f"analysis.{end[2]}") from None
         for m in (margin, 0.0):                 # a margin for laws that overshoot
             try:
                 self.linkage.cover(lo - m, hi + m)
                 break
-            except Exception:
+            except AnalysisError:
                 if m == 0.0:
                     raise
         self.proxy = Proxy(self.reduced, lo - m, hi + m)

@@ -51,7 +51,8 @@ joints:
   - {{type: hinge, bodies: [jib, block], at: D}}
   - {{type: slider, bodies: [ground, block], at: D, axis: [1, 0, 0]}}
 linear_drives:
-  rack: {{nodes: [A, C], pinion_radius: {float(R)!r}, gear_ratio: {float(i)!r}, rotor_inertia: {float(rotor)!r}}}
+  rack: {{nodes: [A, C], pinion_radius: {float(R)!r}, gear_ratio: {float(i)!r},
+         rotor_inertia: {float(rotor)!r}}}
 """
 
     def jib(alpha):

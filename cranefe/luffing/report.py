@@ -95,9 +95,9 @@ def luffing_table(result):
         for v in ("printed", "eq21", "corrected"):
             p = c["paper"][v]
             rho = p["spectral_radius"]
-            err = p["error_rad"]
+            err = math.degrees(p["error_rad"]) if p["error_rad"] is not None else math.nan
             lines.append(f"paper 3-point collocation ({v}): {p['message']}; spectral radius "
-                         f"{rho:.3f}; error {math.degrees(err) if err is not None else float('nan'):.2e} deg")
+                         f"{rho:.3f}; error {err:.2e} deg")
         if "corrected_relaxed" in c["paper"]:
             p = c["paper"]["corrected_relaxed"]
             lines.append(f"  corrected, relaxed by {p['relax']:.3f}: {p['message']}")
