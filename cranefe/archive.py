@@ -43,7 +43,7 @@ def _result_classes():
     from .modal import ModalResult
     classes = {"ModalResult": ModalResult}
     from .damping import DampingResult
-    from .transient.integrate import TransientResult
+    from .transient.results import TransientResult
     classes["DampingResult"] = DampingResult
     classes["TransientResult"] = TransientResult
     from .luffing.analysis import LuffingResult

@@ -155,3 +155,77 @@ effects: {{structure: flexible}}
     k = P / (L * (np.tan(kl) / kl - 1))
     return text, {"omega": np.array([np.sqrt(k / M)]),
                   "omega_no_sway": np.array([np.sqrt(3 * E * I / L**3 / M)])}
+
+
+# ---------------------------------------------------------------- transient cases
+# The two-mass hoist of `two_mass_hoist` (drum J, R; load m on n falls; k = EA / L of
+# the whole rope), sway off, released from its static state or lifted off the ground.
+# q = (theta, z), rope stretch e = R theta - n z, rope force S = S0 + k e.
+
+def _hoist_numbers(falls, J, R, m, EA):
+    k = EA / (30 + 20 * falls)
+    return k, m * G / falls
+
+
+def _with_rope_mass(text, mu):
+    """The model text with mass_per_length mu on its rope (for effects.rope_mass; the
+    closed forms are those of the massless rope)."""
+    return text.replace("hoist: {EA:", f"hoist: {{mass_per_length: {mu}, EA:") if mu \
+        else text
+
+
+def hoist_step_torque(ratio=1.6, falls=2, J=500.0, R=0.25, m=5000.0, EA=2.0e7, mu=0.0):
+    """Step drum torque M = ratio x the holding torque R S0 from the static state.
+
+    Heletiy (2016) eq. 7-8 with the quasi-cyclic drum angle: J theta'' = dM - R k e,
+    m z'' = n k e give e'' + w^2 e = R dM / J, w^2 = k (R^2/J + n^2/m), so from rest
+    S(t) = S0 + dS (1 - cos w t), dS = m R dM / (m R^2 + n^2 J) (twice that at the peak),
+    and the drum speed theta' = dM t / J - (R dS / J) (t - sin(w t) / w).
+    Returns (model yaml, exact) with callables force(t), drum_speed(t); mu > 0 gives the
+    rope a mass per length (for rope_mass runs; the closed form is the massless one).
+    """
+    text, _ = two_mass_hoist(falls, J, R, m, EA)
+    text = _with_rope_mass(text, mu)
+    k, S0 = _hoist_numbers(falls, J, R, m, EA)
+    torque = ratio * R * S0
+    dM = torque - R * S0
+    w = np.sqrt(k * (R**2 / J + falls**2 / m))
+    dS = m * R * dM / (m * R**2 + falls**2 * J)
+    return text, {"torque": torque, "S0": S0, "omega": w, "dS": dS,
+                  "peak": S0 + 2 * dS, "peak_time": np.pi / w,
+                  "force": lambda t: S0 + dS * (1 - np.cos(w * t)),
+                  "drum_speed": lambda t: dM * t / J - R * dS / J * (t - np.sin(w * t) / w)}
+
+
+def hoist_lift_off(drum_speed=2.0, falls=2, J=500.0, R=0.25, m=5000.0, EA=2.0e7):
+    """A load resting on the ground lifted by its rope hauled in at a constant drum
+    speed from t = 0 (rigid drive). The rope force rises as k R w_d t per fall until
+    n S = m g at t_lift = m g / (n k R w_d); the load then starts from rest while the
+    rope end moves at the hook speed v = R w_d / n, so the force overshoots by m v w:
+    S_max = (m g / n)(1 + v w / g), w^2 = n^2 k / m (EN 13001-2's phi2 of a rigid drive).
+    """
+    text, _ = two_mass_hoist(falls, J, R, m, EA)
+    k, S0 = _hoist_numbers(falls, J, R, m, EA)
+    v = R * drum_speed / falls
+    w = np.sqrt(falls**2 * k / m)
+    return text, {"S0": S0, "omega": w, "hook_speed": v,
+                  "lift_off_time": m * G / (falls * k * R * drum_speed),
+                  "dynamic_factor": 1 + v * w / G, "peak": S0 * (1 + v * w / G)}
+
+
+def hoist_slack(hook_speed=0.9, falls=2, J=500.0, R=0.25, m=5000.0, EA=2.0e7):
+    """From the static state the drum pays out at a constant speed, the hook's rope end
+    moving down at u > g / w: the load lags, the rope force S0 - (m u w / n) sin(w t)
+    reaches zero at t_s = asin(g / (u w)) / w; the load then falls freely and the rope
+    is taut again after 2 u cos(w t_s) / g (the relative motion is symmetric), with the
+    force rising to (m g / n)(1 + u w / g). The relative motion conserves energy.
+    """
+    text, _ = two_mass_hoist(falls, J, R, m, EA)
+    k, S0 = _hoist_numbers(falls, J, R, m, EA)
+    w = np.sqrt(falls**2 * k / m)
+    if hook_speed * w <= G:
+        raise ValueError("the rope stays taut unless hook_speed * w > g")
+    ts = np.arcsin(G / (hook_speed * w)) / w
+    return text, {"S0": S0, "omega": w, "drum_speed": -hook_speed * falls / R,
+                  "slack_time": ts, "taut_time": ts + 2 * hook_speed * np.cos(w * ts) / G,
+                  "peak": S0 * (1 + hook_speed * w / G)}

@@ -1,31 +1,67 @@
-"""Simulate a transient scene: hoist start, lifting a load off the ground, motor torque."""
+"""Simulate a transient scene: hoist start, lifting a load off the ground, slack ropes.
 
-HELP = "simulate a transient scene (docs/transient.md)"
+Prints the peak rope forces and dynamic factors (phi2 of EN 13001-2), drum speeds and
+torques, lift-off times and the energy balance; writes time histories on request.
+The keys of `analysis: {type: transient, ...}` are in docs/transient.md.
+"""
+
+import sys
+import time
+
+HELP = "simulate a transient scene: rope forces, dynamic factors, lift-off (docs/transient.md)"
+PROGRESS_AFTER = 2.0       # s: a progress bar appears for runs longer than this
 
 
 def add_arguments(p):
     p.add_argument("file", help="scene file with analysis: {type: transient, ...}")
     p.add_argument("--json", action="store_true", help="print one JSON document")
-    p.add_argument("--csv", metavar="OUT.csv", help="time histories (rope forces, drums)")
+    p.add_argument("--csv", metavar="OUT.csv", help="time histories (rope forces, drums, "
+                   "load displacements, ground forces)")
     p.add_argument("--archive", metavar="OUT.h5", help="write an HDF5 result archive")
-    p.add_argument("--xdmf", metavar="OUT.xdmf", help="displacements as an XDMF time series")
-    p.add_argument("--plots", metavar="DIR", help="PNG plots of rope forces and drum speeds")
+    p.add_argument("--xdmf", metavar="OUT.xdmf", help="displacements as an XDMF time "
+                   "series for ParaView")
+    p.add_argument("--plots", metavar="DIR", help="PNG plot of the histories (DIR/transient.png)")
+
+
+class _Progress:
+    """A rich progress bar on stderr that appears only once a run passes
+    PROGRESS_AFTER seconds (and only on a terminal)."""
+
+    def __init__(self):
+        self.t0 = time.perf_counter()
+        self.bar = None
+        self.task = None
+        self.enabled = sys.stderr.isatty()
+
+    def __call__(self, t, duration):
+        if not self.enabled:
+            return
+        if self.bar is None:
+            if time.perf_counter() - self.t0 < PROGRESS_AFTER:
+                return
+            from rich.progress import Progress
+            self.bar = Progress(transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task("simulating", total=duration)
+        self.bar.update(self.task, completed=t)
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.stop()
 
 
 def run(args):
-    import sys
-
-    from rich.progress import Progress
-
     from ..model import load
-    from ..report import dumps, transient_document, transient_table
+    from ..report import dumps
     from ..transient.integrate import simulate
+    from ..transient.output import document, table
     model = load(args.file)
-    with Progress(transient=True, disable=not sys.stderr.isatty()) as bar:
-        task = bar.add_task("simulating", total=None)
-        result = simulate(model, progress=lambda k, n: bar.update(task, completed=k,
-                                                                   total=n))
-    print(dumps(transient_document(result)) if args.json else transient_table(result))
+    progress = _Progress()
+    try:
+        result = simulate(model, progress=progress)
+    finally:
+        progress.close()
+    print(dumps(document(result)) if args.json else table(result))
     written = []
     if args.csv:
         from ..transient.output import write_csv

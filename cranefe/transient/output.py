@@ -1,46 +1,147 @@
-"""Time histories of a transient result: CSV and PNG plots."""
+"""Presentation of a TransientResult: JSON document, terminal table, CSV, PNG plots."""
 
 import csv
+import math
 import os
 
 import numpy as np
 
 
+def _num(x):
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def document(result):
+    """The JSON document of ``cranefe simulate --json`` (docs/transient.md)."""
+    r = result
+    ropes = r.rope_names
+    drums = {}
+    for k, name in enumerate(r.drum_names):
+        drums[name] = {"drive": r.drum_drive[k],
+                       "speed_final_rad_s": _num(r.drum_speed[-1, k]),
+                       "speed_max_rad_s": _num(np.abs(r.drum_speed[:, k]).max()),
+                       "torque_max_N_m": _num(r.drum_torque[:, k].max()),
+                       "torque_min_N_m": _num(r.drum_torque[:, k].min())}
+    return {
+        "model": r.model_name, "scene": r.scene, "method": r.method,
+        "initial": r.initial, "effects": r.effects, "dofs": r.dofs,
+        "duration_s": _num(r.duration), "time_step_s": _num(r.time_step),
+        "steps": r.steps, "modes": r.modes if r.method == "modal" else None,
+        "highest_frequency_hz": _num(r.highest_frequency_hz),
+        "dynamic_factor": {n: _num(v) for n, v in zip(ropes, r.dynamic_factor)},
+        "rope_force_max_N": {n: _num(v) for n, v in zip(ropes, r.rope_force_max)},
+        "rope_force_max_time_s": {n: _num(v) for n, v in zip(ropes, r.rope_force_max_time)},
+        "rope_force_static_N": {n: _num(v) for n, v in zip(ropes, r.rope_force_static)},
+        "lift_off_time_s": _num(r.lift_off_time),
+        "lift_off_times_s": {n: _num(v) for n, v in zip(r.ground_names, r.lift_off_times)},
+        "drums": drums,
+        "energy_error": _num(r.energy_error),
+        "energy_J": {k: _num(v) for k, v in r.energy.items()},
+        "events": r.events[:100], "events_total": len(r.events),
+        "timings_s": {k: round(v, 6) for k, v in r.timings.items()},
+        "warnings": list(r.warnings),
+    }
+
+
+def table(result):
+    r = result
+    eff = ", ".join(f"{k} {({True: 'on', False: 'off'}).get(v, v)}"
+                    for k, v in r.effects.items())
+    how = f"modal superposition, {r.modes} elastic modes" if r.method == "modal" \
+        else "direct integration"
+    lines = [f"{r.scene or r.model_name}: {how}, {r.dofs} coordinates ({eff})",
+             f"  {r.steps} steps of {r.time_step:.4g} s over {r.duration:g} s, initial "
+             f"state {r.initial}"]
+    head = (f"  {'rope':<20} {'static [N]':>12} {'max [N]':>12} {'at [s]':>9} "
+            f"{'dynamic factor':>15}")
+    lines += [head, "  " + "-" * (len(head) - 2)]
+    for n, s, m, t, f in zip(r.rope_names, r.rope_force_static, r.rope_force_max,
+                             r.rope_force_max_time, r.dynamic_factor):
+        lines.append(f"  {n:<20} {s:>12.6g} {m:>12.6g} {t:>9.4g} {f:>15.4f}")
+    for k, name in enumerate(r.drum_names):
+        lines.append(f"  drum {name} ({r.drum_drive[k]}): speed {r.drum_speed[-1, k]:.4g} "
+                     f"rad/s at the end, torque {r.drum_torque[:, k].min():.4g} .. "
+                     f"{r.drum_torque[:, k].max():.4g} N m")
+    for n, t in zip(r.ground_names, r.lift_off_times):
+        lines.append(f"  {n}: " + (f"lift-off at t = {t:.6g} s" if np.isfinite(t)
+                                   else "stays on the ground"))
+    if np.isfinite(r.energy_error):
+        lines.append(f"  energy balance error: {r.energy_error:.2e}")
+    if r.events:
+        lines.append(f"  events: {len(r.events)}" + (", the first ones:"
+                                                      if len(r.events) > 8 else ""))
+        lines += [f"    {e}" for e in r.events[:8]]
+    lines += [f"warning: {w}" for w in r.warnings]
+    return "\n".join(lines)
+
+
 def write_csv(path, result):
-    """Columns: t, each rope's force, each drum's speed (written then renamed)."""
+    """Time histories: t, rope forces, drum angle/speed/torque, load displacements and
+    ground forces (written to a temporary file, then renamed)."""
+    r = result
     tmp = f"{path}.{os.getpid()}.tmp"
+    cols = ["t_s"] + [f"rope_{n}_N" for n in r.rope_names]
+    for n in r.drum_names:
+        cols += [f"drum_{n}_rad", f"drum_{n}_rad_s", f"drum_{n}_N_m"]
+    for n in r.load_names:
+        cols += [f"{n}_u{a}_m" for a in "xyz"]
+    cols += [f"ground_{n}_N" for n in r.ground_names]
     with open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["t_s"] + [f"rope_{n}_N" for n in result.rope_names]
-                   + [f"drum_{n}_rad_s" for n in result.drum_names])
-        for k, t in enumerate(result.times):
-            w.writerow([f"{t:.6g}"] + [f"{x:.6g}" for x in result.rope_force[k]]
-                       + [f"{x:.6g}" for x in result.drum_speed[k]])
+        w.writerow(cols)
+        for k, t in enumerate(r.times):
+            row = [t] + list(r.rope_force[k])
+            for d in range(len(r.drum_names)):
+                row += [r.drum_angle[k, d], r.drum_speed[k, d], r.drum_torque[k, d]]
+            row += list(r.load_displacement[k].ravel()) + list(r.ground_force[k])
+            w.writerow([f"{x:.9g}" for x in row])
     os.replace(tmp, path)
     return path
 
 
 def plot(folder, result):
-    from ..studies._common import pyplot, save
-    plt = pyplot()
+    """transient.png: rope forces (static level dotted, peaks marked), drum speeds and
+    torques, load displacements."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    r = result
     os.makedirs(folder, exist_ok=True)
-    fig, axes = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    for k, name in enumerate(result.rope_names):
-        axes[0].plot(result.times, result.rope_force[:, k] / 1e3, label=f"rope {name}")
-        axes[0].axhline(result.rope_force_static[k] / 1e3, ls=":", color="grey")
-    axes[0].set_ylabel("rope force [kN]")
-    if not np.isnan(result.lift_off_time):
-        axes[0].axvline(result.lift_off_time, ls="--", color="k", label="lift-off")
-    axes[0].legend()
-    for k, name in enumerate(result.drum_names):
-        axes[1].plot(result.times, result.drum_speed[:, k], label=f"drum {name}")
-    axes[1].set_ylabel("drum speed [rad/s]")
-    axes[1].set_xlabel("t [s]")
-    if result.drum_names:
-        axes[1].legend()
+    fig, axes = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    ax = axes[0]
+    for k, name in enumerate(r.rope_names):
+        line, = ax.plot(r.times, r.rope_force[:, k] / 1e3, label=f"{name}: "
+                        f"phi = {r.dynamic_factor[k]:.3f}")
+        ax.axhline(r.rope_force_static[k] / 1e3, ls=":", color=line.get_color())
+        ax.plot([r.rope_force_max_time[k]], [r.rope_force_max[k] / 1e3], "v",
+                color=line.get_color())
+    for t in r.lift_off_times[np.isfinite(r.lift_off_times)]:
+        ax.axvline(t, ls="--", color="k", lw=0.8)
+    ax.set_ylabel("rope force [kN]")
+    ax.legend(fontsize=8)
+    ax = axes[1]
+    for k, name in enumerate(r.drum_names):
+        ax.plot(r.times, r.drum_speed[:, k], label=f"drum {name} ({r.drum_drive[k]})")
+    ax.set_ylabel("drum speed [rad/s]")
+    if r.drum_names:
+        ax.legend(fontsize=8)
+        tw = ax.twinx()
+        for k in range(len(r.drum_names)):
+            tw.plot(r.times, r.drum_torque[:, k] / 1e3, ls="--", lw=0.8)
+        tw.set_ylabel("drum torque [kN m] (dashed)")
+    ax = axes[2]
+    for k, name in enumerate(r.load_names):
+        ax.plot(r.times, r.load_displacement[:, k, 2] * 1e3, label=f"{name} z")
+    ax.set_ylabel("displacement [mm]")
+    ax.set_xlabel("t [s]")
+    if r.load_names:
+        ax.legend(fontsize=8)
     for ax in axes:
         ax.grid(alpha=0.3)
-    fig.suptitle(f"{result.model_name}: dynamic factor "
-                 + ", ".join(f"{n} {f:.3f}" for n, f in zip(result.rope_names,
-                                                            result.dynamic_factor)))
-    return [save(fig, folder, "transient.png")]
+    fig.suptitle(f"{r.scene or r.model_name} ({r.method}, h = {r.time_step:.3g} s)")
+    fig.tight_layout()
+    path = os.path.join(folder, "transient.png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [path]
