@@ -115,38 +115,6 @@ def damping_table(result):
     return "\n".join(lines)
 
 
-def transient_document(result):
-    """The JSON document of ``cranefe simulate --json``."""
-    ropes = result.rope_names
-    return {"model": result.model_name, "method": result.method,
-            "duration_s": _num(result.times[-1]), "time_step_s": _num(result.time_step),
-            "steps": result.steps, "dofs": result.dofs, "effects": result.effects,
-            "dynamic_factor": {r: _num(v) for r, v in zip(ropes, result.dynamic_factor)},
-            "rope_force_max_N": {r: _num(v) for r, v in zip(ropes, result.rope_force_max)},
-            "rope_force_static_N": {r: _num(v) for r, v in
-                                    zip(ropes, result.rope_force_static)},
-            "lift_off_time_s": _num(result.lift_off_time),
-            "energy_error": _num(result.energy_error), "events": result.events[:50],
-            "timings_s": {k: round(v, 6) for k, v in result.timings.items()},
-            "warnings": list(result.warnings)}
-
-
-def transient_table(result):
-    lines = [f"{result.model_name}: {result.method} integration, {result.dofs} coordinates, "
-             f"{result.steps} steps of {result.time_step:.3g} s"]
-    head = f"  {'rope':<20} {'static [N]':>12} {'max [N]':>12} {'dynamic factor':>15}"
-    lines += [head]
-    for n, s, m, f in zip(result.rope_names, result.rope_force_static, result.rope_force_max,
-                          result.dynamic_factor):
-        lines.append(f"  {n:<20} {s:>12.6g} {m:>12.6g} {f:>15.4f}")
-    if not math.isnan(result.lift_off_time):
-        lines.append(f"  lift-off at t = {result.lift_off_time:.5g} s")
-    if not math.isnan(result.energy_error):
-        lines.append(f"  energy balance error: {result.energy_error:.2e}")
-    lines += [f"  event: {e}" for e in result.events[:10]]
-    lines += [f"warning: {w}" for w in result.warnings]
-    return "\n".join(lines)
-
 
 def _finite_or_none(values, k):
     return None if values is None else _num(values[k])
