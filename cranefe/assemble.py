@@ -149,15 +149,16 @@ def spring_rows(model, layout, ropes_fe=None, members=None):
     lengths = list(L)
     rope_of = list(massless)
     if fe:
-        from .ropes import endpoint_maps
+        from .ropes import element_materials, endpoint_maps
         rm = ropes_fe
         dofs, B = endpoint_maps(rm, layout)
+        EA, _ = element_materials(model, rm)
         # elongation e . (u_end - u_start) of each element
         v = np.einsum("ki,kij->kj", rm.e, B[:, 3:] - B[:, :3])
         ne = len(rm.length)
         blocks.append(_coo([np.repeat(np.arange(ne), 8)], [dofs.ravel()], [v.ravel()],
                            (ne, layout.size)))
-        c += list(rm.EA / rm.length)
+        c += list(EA / rm.length)
         psi += [model.ropes[k].psi for k in rm.rope]
         names += [f"rope {model.ropes[k].name}" for k in rm.rope]
         lengths += list(rm.length)
@@ -166,14 +167,16 @@ def spring_rows(model, layout, ropes_fe=None, members=None):
     member_of = []
     mm = members
     if mm is not None and (~mm.beam).any():    # trusses: one row each, EA / l
+        from .members import element_sections
+        sec = element_sections(model, mm)
         t = np.flatnonzero(~mm.beam)
         e, l = _member_geometry(model, layout, mm, t)
         cc, v = elongation_rows(e, np.ones(len(t)), layout.node(mm.node[t, 0]),
                                 layout.node(mm.node[t, 1]))
         blocks.append(_coo([np.repeat(np.arange(len(t)), 6)], [cc.ravel()], [v.ravel()],
                            (len(t), layout.size)))
-        c += list(mm.E[t] * mm.A[t] / l)
-        psi += list(mm.psi[t])
+        c += list(sec.E[t] * sec.A[t] / l)
+        psi += list(sec.psi[t])
         names += [f"member {model.members[k].name}" for k in mm.member[t]]
         lengths += list(l)
         rope_of += [-1] * len(t)
@@ -219,11 +222,13 @@ def beam_dofs(layout, mm, which):
 def beam_blocks(model, layout, mm):
     """Elastic stiffness of the beam elements in global axes, and their absorption."""
     from .elements import beam_axes, beam_stiffness, to_global
+    from .members import element_sections
+    sec = element_sections(model, mm)
     b = np.flatnonzero(mm.beam)
     e, l = _member_geometry(model, layout, mm, b)
     axes = beam_axes(e, mm.orientation[b])
-    k = beam_stiffness(mm.E[b], mm.G[b], mm.A[b], mm.Iy[b], mm.Iz[b], mm.J[b], l)
-    return Blocks(beam_dofs(layout, mm, b), to_global(k, axes)), mm.psi[b]
+    k = beam_stiffness(sec.E[b], sec.G[b], sec.A[b], sec.Iy[b], sec.Iz[b], sec.J[b], l)
+    return Blocks(beam_dofs(layout, mm, b), to_global(k, axes)), sec.psi[b]
 
 
 def _carriers_of(model, dofs, i):
@@ -314,9 +319,10 @@ def mass_and_gravity(model, dofs, effects):
 
     rm = dofs.ropes
     if rm is not None:          # rope elements: B^T M6 B on their end maps
-        from .ropes import endpoint_maps
+        from .ropes import element_materials, endpoint_maps
         idx, B = endpoint_maps(rm, layout)
-        M6 = rope_mass(rm.mu, rm.length, lumped=effects.rope_mass_matrix == "lumped")
+        _, mu = element_materials(model, rm)
+        M6 = rope_mass(mu, rm.length, lumped=effects.rope_mass_matrix == "lumped")
         Me = np.einsum("kai,kab,kbj->kij", B, M6, B)
         rows.append(np.repeat(idx, 8, axis=1).ravel())
         cols.append(np.tile(idx, (1, 8)).ravel())
@@ -327,18 +333,20 @@ def mass_and_gravity(model, dofs, effects):
     mm = dofs.members
     if mm is not None:          # flexible members: truss and beam element masses
         from .elements import beam_axes, beam_mass, to_global
+        from .members import element_sections
+        sec = element_sections(model, mm)
         t, b = np.flatnonzero(~mm.beam), np.flatnonzero(mm.beam)
         g12 = np.concatenate([model.gravity, np.zeros(3), model.gravity, np.zeros(3)])
         if len(t):
             _, l = _member_geometry(model, layout, mm, t)
             idx = np.hstack([layout.node(mm.node[t, 0]), layout.node(mm.node[t, 1])])
-            lump = mm.lumped[t]
-            m_e = mm.rho[t] * mm.A[t] * l
+            lump = sec.lumped[t]
+            m_e = sec.rho[t] * sec.A[t] * l
             # lumped: m/2 on the diagonal (no 6x6 blocks of zeros for big lattices)
             rows.append(idx[lump].ravel())
             cols.append(idx[lump].ravel())
             vals.append(np.repeat(m_e[lump] / 2, 6))
-            mt = rope_mass(mm.rho[t][~lump] * mm.A[t][~lump], l[~lump])
+            mt = rope_mass(sec.rho[t][~lump] * sec.A[t][~lump], l[~lump])
             rows.append(np.repeat(idx[~lump], 6, axis=1).ravel())
             cols.append(np.tile(idx[~lump], (1, 6)).ravel())
             vals.append(mt.ravel())
@@ -346,9 +354,10 @@ def mass_and_gravity(model, dofs, effects):
         if len(b):
             e, l = _member_geometry(model, layout, mm, b)
             axes = beam_axes(e, mm.orientation[b])
-            mb = np.where(mm.lumped[b][:, None, None],
-                          beam_mass(mm.rho[b], mm.A[b], mm.Iy[b], mm.Iz[b], l, lumped=True),
-                          beam_mass(mm.rho[b], mm.A[b], mm.Iy[b], mm.Iz[b], l))
+            mb = np.where(sec.lumped[b][:, None, None],
+                          beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l,
+                                    lumped=True),
+                          beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l))
             mg = to_global(mb, axes)
             idx = beam_dofs(layout, mm, b)
             rows.append(np.repeat(idx, 12, axis=1).ravel())
@@ -422,21 +431,21 @@ def elastic_stiffness(model, dofs, effects=None):
     return K_u.tocsr(), springs, beams, beam_psi
 
 
-def assemble(model, effects=None, dofs=None):
+def assemble(model, effects=None, reuse=None):
     """Assemble K, M, f for `model` with `effects` (default: the model's own).
 
-    `dofs` may pass a DofMap built for a model of the same structure (see
-    `cranefe.sweeps.evaluate`), which skips building it again."""
+    `reuse`: a `cranefe.reuse.Reuse` holding work of earlier models of the same
+    structure (the DOF maps, the static null space), as a sweep's variants share it."""
     import time
     t0 = time.perf_counter()
     effects = effects or model.effects
-    dofs = dofs or build_dofs(model, effects)
+    dofs = reuse.dofs(model, effects) if reuse else build_dofs(model, effects)
     K_u, springs, beams, beam_psi = elastic_stiffness(model, dofs, effects)
     M_u, f_u, _ = mass_and_gravity(model, dofs, effects)
     static, geometric = None, ()
     if effects.sway:
         from .statics import solve_static
-        static = solve_static(model, effects)
+        static = solve_static(model, effects, reuse)
         geometric = geometric_stiffness(model, dofs, static)
         K_u = K_u + sum_blocks(geometric, dofs.layout.size)
     T = dofs.T

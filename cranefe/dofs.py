@@ -16,6 +16,8 @@ master-slave elimination of joint, linear-drive and inextensible-rope constraint
 handled).
 """
 
+import dataclasses
+import hashlib
 from dataclasses import dataclass
 
 import numpy as np
@@ -171,6 +173,52 @@ def direction_tensor(model, effects, n_nodes):
         np.add.at(D, a, ee)
         np.add.at(D, b, ee)
     return D
+
+
+# Model values that build_dofs never reads: models that differ only in these share one
+# DofMap (sweeps reuse it). Everything else is structure, so a field added later counts
+# as structure until it is listed here; tests/test_sweeps.py perturbs every number of
+# the examples and checks that an unchanged key means an unchanged DofMap. A rope's
+# mass_per_length decides only whether it is discretised (rope_mass: N).
+VALUE_ONLY = {
+    "Model": {"text", "analysis"},
+    "Body": {"inertia"},
+    "PointMasses": {"mass", "inertia"},
+    "Spring": {"stiffness", "psi"},
+    "Drum": {"inertia", "rotor_inertia", "gear_ratio"},
+    "Rope": {"EA", "psi", "mass_per_length"},
+    "Member": {"E", "G", "A", "Iy", "Iz", "J", "rho", "psi", "mass"},
+    "LinearDrive": {"pinion_radius", "gear_ratio", "rotor_inertia"},
+}
+
+
+def structure_key(model, effects=None):
+    """A digest of everything `build_dofs(model, effects)` depends on."""
+    h = hashlib.sha1()
+
+    def feed(x):
+        if dataclasses.is_dataclass(x):
+            skip = VALUE_ONLY.get(type(x).__name__, ())
+            h.update(type(x).__name__.encode())
+            for f in dataclasses.fields(x):
+                if f.name not in skip:
+                    h.update(f.name.encode())
+                    feed(getattr(x, f.name))
+            if type(x).__name__ == "Rope":
+                feed(x.mass_per_length > 0)
+        elif isinstance(x, np.ndarray):
+            h.update(f"{x.dtype}{x.shape}".encode())
+            h.update(np.ascontiguousarray(x).tobytes())
+        elif isinstance(x, (tuple, list)):
+            h.update(f"({len(x)}".encode())
+            for v in x:
+                feed(v)
+        else:
+            h.update(repr(x).encode())
+
+    feed(model)
+    feed(effects or model.effects)
+    return h.hexdigest()
 
 
 def build_dofs(model, effects=None):

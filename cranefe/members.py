@@ -12,21 +12,14 @@ import numpy as np
 
 @dataclass(frozen=True)
 class MemberMesh:
+    """The elements of the members: structure only (their sections: `element_sections`)."""
+
     coords: np.ndarray        # (ni, 3) interior nodes of subdivided beams
     names: tuple              # (ni,)
     # elements (ne,)
     member: np.ndarray        # index in model.members
     beam: np.ndarray          # bool: beam (else truss)
     node: np.ndarray          # (ne, 2) expanded node indices (offset applied by caller)
-    E: np.ndarray
-    G: np.ndarray
-    A: np.ndarray
-    Iy: np.ndarray
-    Iz: np.ndarray
-    J: np.ndarray
-    rho: np.ndarray
-    lumped: np.ndarray        # bool
-    psi: np.ndarray
     orientation: np.ndarray   # (ne, 3)
 
     @property
@@ -38,13 +31,36 @@ class MemberMesh:
         return np.unique(self.node[self.beam].ravel())
 
 
+@dataclass(frozen=True)
+class Sections:
+    """Material and section of each element (ne,), from its member."""
+
+    E: np.ndarray
+    G: np.ndarray
+    A: np.ndarray
+    Iy: np.ndarray
+    Iz: np.ndarray
+    J: np.ndarray
+    rho: np.ndarray
+    psi: np.ndarray
+    lumped: np.ndarray        # bool: lumped mass matrix
+
+
+def element_sections(model, mm):
+    """`Sections` of the elements of `mm`, read from the model's members (the mesh is
+    structure only, so one mesh serves models that differ in these values)."""
+    per = {k: np.array([float(getattr(m, k)) for m in model.members])
+           for k in ("E", "G", "A", "Iy", "Iz", "J", "rho", "psi")}
+    lumped = np.array([m.mass == "lumped" for m in model.members], dtype=bool)
+    return Sections(**{k: v[mm.member] for k, v in per.items()}, lumped=lumped[mm.member])
+
+
 def discretize(model, first_node):
     """MemberMesh of the model's members; interior nodes are numbered from first_node.
 
     Vectorised per member (a lattice of 1e5 bars is one or a few members)."""
     coords, names = [], []
-    parts = {k: [] for k in ("member", "beam", "node", "lumped", "orientation")}
-    props = {k: [] for k in ("E", "G", "A", "Iy", "Iz", "J", "rho", "psi")}
+    parts = {k: [] for k in ("member", "beam", "node", "orientation")}
     n_new = 0
     for mi, m in enumerate(model.members):
         beam = m.type == "beam"
@@ -75,16 +91,12 @@ def discretize(model, first_node):
         parts["member"].append(np.full(ne, mi))
         parts["beam"].append(np.full(ne, beam))
         parts["node"].append(nodes)
-        parts["lumped"].append(np.full(ne, m.mass == "lumped"))
         parts["orientation"].append(np.asarray(orient, dtype=float))
-        for k in props:
-            props[k].append(np.full(ne, float(getattr(m, k))))
-    cat = {k: (np.concatenate(v) if v else np.zeros(0)) for k, v in {**parts, **props}.items()}
+    cat = {k: (np.concatenate(v) if v else np.zeros(0)) for k, v in parts.items()}
     cat["node"] = cat["node"].astype(int).reshape(-1, 2)
     cat["orientation"] = cat["orientation"].reshape(-1, 3)
     cat["member"] = cat["member"].astype(int)
-    for k in ("beam", "lumped"):
-        cat[k] = cat[k].astype(bool)
+    cat["beam"] = cat["beam"].astype(bool)
     return MemberMesh(np.vstack(coords) if coords else np.zeros((0, 3)), tuple(names), **cat)
 
 

@@ -36,8 +36,6 @@ class RopeMesh:
     coef: np.ndarray          # (ne, 2) xi = coef * (slip or drum rotation)
     e: np.ndarray             # (ne, 3) element direction (that of its fall)
     length: np.ndarray        # (ne,)
-    mu: np.ndarray            # (ne,) mass per length
-    EA: np.ndarray            # (ne,)
 
     @property
     def n_interior(self):
@@ -62,8 +60,7 @@ def discretize(model, n_elements, include_massless=False):
     nn = len(model.node_names)
     drum_names = {d.name: i for i, d in enumerate(model.drums)}
     coords, names, direction, slip_names = [], [], [], []
-    el = {k: [] for k in ("rope", "fall", "node", "slip", "drum", "coef", "e", "length",
-                          "mu", "EA")}
+    el = {k: [] for k in ("rope", "fall", "node", "slip", "drum", "coef", "e", "length")}
     chosen = []
     for ri, rope in enumerate(model.ropes):
         if rope.mass_per_length <= 0 and not include_massless:
@@ -105,8 +102,7 @@ def discretize(model, n_elements, include_massless=False):
             for key, val in (("rope", ri), ("fall", -1), ("node", (node, node)),
                              ("slip", (s0[0], s1[0])), ("drum", (s0[1], s1[1])),
                              ("coef", (s0[2], s1[2])), ("e", e),
-                             ("length", rope.extra_length), ("mu", 0.0),
-                             ("EA", rope.EA)):
+                             ("length", rope.extra_length)):
                 el[key].append(val)
         for f, (a, b) in enumerate(falls):
             pa, pb = model.coords[a], model.coords[b]
@@ -130,8 +126,6 @@ def discretize(model, n_elements, include_massless=False):
                 el["coef"].append((s0[2], s1[2]))
                 el["e"].append(e)
                 el["length"].append(le)
-                el["mu"].append(rope.mass_per_length)
-                el["EA"].append(rope.EA)
     arr = {k: np.array(v, dtype=int if k in ("rope", "fall", "node", "slip", "drum")
                        else float) for k, v in el.items()}
     arr["node"] = arr["node"].reshape(-1, 2)
@@ -141,6 +135,15 @@ def discretize(model, n_elements, include_massless=False):
     return RopeMesh(tuple(chosen), np.array(coords, dtype=float).reshape(-1, 3),
                     tuple(names), np.array(direction, dtype=float).reshape(-1, 3),
                     tuple(slip_names), **arr)
+
+
+def element_materials(model, rm):
+    """(EA, mu), each (ne,), of the elements of `rm`, read from their ropes (the mesh is
+    structure only, so one mesh serves models that differ in these values); the
+    extra-length piece of a rope is massless."""
+    EA = np.array([r.EA for r in model.ropes], dtype=float)
+    mu = np.array([r.mass_per_length for r in model.ropes], dtype=float)
+    return EA[rm.rope], np.where(rm.fall >= 0, mu[rm.rope], 0.0)
 
 
 def endpoint_maps(rm, layout):

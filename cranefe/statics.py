@@ -17,6 +17,7 @@ from .condense import STATIC_DENSE_MAX, null_space
 from .dofs import build_dofs
 from .elements import span_geometry
 from .errors import AnalysisError, ModelError
+from .members import element_sections
 from .model import GROUND
 
 
@@ -93,7 +94,7 @@ class StaticState:
             yield g, np.array(p), np.array(F)
 
 
-def solve_static(model, effects=None):
+def solve_static(model, effects=None, reuse=None):
     """Linear static solution under gravity, drums held, elastic stiffness only.
 
     Interior nodes of ropes with mass move only along their falls here, so a span's own
@@ -102,14 +103,15 @@ def solve_static(model, effects=None):
     """
     effects = replace(effects or model.effects, sway=False, drive="held",
                       rope_elasticity=True)
-    dofs = build_dofs(model, effects)
+    dofs = reuse.dofs(model, effects) if reuse else build_dofs(model, effects)
     layout = dofs.layout
     K_u, springs, beams, _ = elastic_stiffness(model, dofs)
     _, f_u, gravity_points = mass_and_gravity(model, dofs, effects)
     T = dofs.T
     K = (T.T @ K_u @ T).tocsr()
     f = T.T @ f_u
-    q = _solve(K, f, lambda: pattern(springs, dofs, [beams] if beams else []), dofs, model)
+    q = _solve(K, f, lambda: pattern(springs, dofs, [beams] if beams else []), dofs, model,
+               reuse)
     u = T @ q
     element_force = springs.c * (springs.R @ u)
     beam_force = np.zeros(0)
@@ -118,7 +120,8 @@ def solve_static(model, effects=None):
         bi = np.flatnonzero(mm.beam)
         e, l = span_geometry(dofs.coords, mm.node[bi, 0], mm.node[bi, 1])
         du = u[layout.node(mm.node[bi, 1])] - u[layout.node(mm.node[bi, 0])]
-        beam_force = mm.E[bi] * mm.A[bi] / l * np.einsum("ki,ki->k", e, du)
+        sec = element_sections(model, mm)
+        beam_force = sec.E[bi] * sec.A[bi] / l * np.einsum("ki,ki->k", e, du)
     nn = layout.n_nodes
     # point masses on bodies are in gravity_points, not in f_u's node rows
     tr = layout.translations()
@@ -152,8 +155,10 @@ def solve_static(model, effects=None):
                        node_force, tuple(joint_forces), tuple(gravity_points), beam_force, mm)
 
 
-def _solve(K, f, P, dofs, model):
-    """Solve K q = f; directions no element resists must carry no load."""
+def _solve(K, f, P, dofs, model, reuse=None):
+    """Solve K q = f; directions no element resists must carry no load. P() forms the
+    pattern matrix, whose null space `reuse` may hold from a model of the same
+    structure."""
     n = K.shape[0]
     if n == 0:
         return np.zeros(0)
@@ -170,7 +175,7 @@ def _solve(K, f, P, dofs, model):
             raise ModelError("not in static equilibrium: gravity moves a part that nothing "
                              "restrains; support it with a joint, rope or spring", model.file)
         return q
-    N = null_space(P().toarray())
+    N = reuse.null_space(P()) if reuse else null_space(P().toarray())
     Kd = K.toarray()
     if N.shape[1]:
         load = N.T @ f

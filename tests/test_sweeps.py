@@ -1,6 +1,7 @@
 """Parameter sweeps: local processes and Dask give identical results; an interrupted
 sweep resumes with only the missing variants; a failing variant does not stop the rest."""
 
+import glob
 import json
 import os
 import signal
@@ -165,3 +166,212 @@ output: phi.h5
         v = base.drums[0].radius * 2.0 / 2
         assert row["status"] == "ok"
         assert row["outputs"][0] == pytest.approx(1 + v * w / 9.81, rel=2e-3)
+
+
+# ------------------------------------------------------------- reuse across variants
+
+def _numbers(data, path=()):
+    """Paths of every number in raw YAML data."""
+    if isinstance(data, dict):
+        for k, v in data.items():
+            yield from _numbers(v, path + (k,))
+    elif isinstance(data, list):
+        for i, v in enumerate(data):
+            yield from _numbers(v, path + (i,))
+    elif isinstance(data, (int, float)) and not isinstance(data, bool):
+        yield path
+
+
+def _same(a, b):
+    """Field-by-field equality of DofMaps (and the meshes and layout inside)."""
+    import dataclasses
+    import scipy.sparse as sp
+    if dataclasses.is_dataclass(a):
+        return type(a) is type(b) and all(_same(getattr(a, f.name), getattr(b, f.name))
+                                          for f in dataclasses.fields(a))
+    if sp.issparse(a):
+        return a.shape == b.shape and abs(a - b).max() == 0 if a.nnz or b.nnz else True
+    if isinstance(a, np.ndarray):
+        return np.array_equal(a, b)
+    if isinstance(a, (tuple, list)):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    return a == b
+
+
+EXAMPLES = sorted(glob.glob(os.path.join(ROOT, "models", "*.yaml")))
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=os.path.basename)
+def test_an_unchanged_structure_key_means_an_unchanged_dof_map(path):
+    # Perturb every number of the example (up to 60 of a big one), under the effects
+    # that build rope and member meshes too: wherever the key stays, build_dofs must
+    # give the same DofMap, else a sweep would reuse a stale one.
+    import copy
+    from dataclasses import replace
+    from cranefe.dofs import build_dofs, structure_key
+    from cranefe.model.load import build, read_raw
+    from cranefe.errors import ModelError
+    raw = read_raw(path)
+    paths = list(_numbers(raw[0]))
+    paths = paths[::max(1, len(paths) // 60)]
+    base = build(*raw)
+    kept = changed = 0
+    for effects in {base.effects, replace(base.effects, rope_mass=3),
+                    replace(base.effects, structure="flexible", sway=False)}:
+        dofs0, key0 = build_dofs(base, effects), structure_key(base, effects)
+        for p in paths:
+            data = copy.deepcopy(raw[0])
+            target = data
+            for k in p[:-1]:
+                target = target[k]
+            target[p[-1]] = target[p[-1]] * 1.37 + 0.01
+            try:
+                model = build(data, *raw[1:])
+                dofs = build_dofs(model, effects)
+            except ModelError:
+                continue
+            if structure_key(model, effects) == key0:
+                kept += 1
+                assert _same(dofs, dofs0), (p, effects)
+            else:
+                changed += 1
+    assert changed > 0
+    if any(k in raw[0] for k in ("ropes", "springs", "members")):
+        assert kept > 0           # stiffness values at least leave the structure alone
+
+
+def test_rope_mass_sweep_over_EA_uses_each_EA(tmp_path):
+    # the DofMap reused across variants once carried the first variant's rope EA
+    scene = tmp_path / "m.yaml"
+    scene.write_text(f"cranefe: 1\nmodel: {BASE}\neffects: {{rope_mass: 4}}\n")
+    rows = {}
+    for name, reuse in (("reused", True), ("rebuilt", False)):
+        (tmp_path / f"{name}.yaml").write_text(
+            "cranefe: 1\nbase: m.yaml\nparameters:\n"
+            "  ropes.hoist_rope.EA: {values: [1.0e7, 4.0e7]}\n"
+            f"outputs: [frequency_hz.2]\noutput: {name}.h5\n")
+        done = run_sweep(load_sweep(tmp_path / f"{name}.yaml"), workers=0, reuse=reuse)
+        rows[name] = [done[i]["outputs"][0] for i in range(2)]
+    assert rows["reused"] == rows["rebuilt"]
+    # the hoisting mode stiffens with EA: f ~ sqrt(EA) once the rope dominates
+    assert rows["reused"][1] / rows["reused"][0] > 1.3
+
+
+def test_reuse_is_exact_and_finds_the_structure_once():
+    # variants that differ in stiffness and masses: the same matrices with and without
+    # reuse, one DofMap per effects and one static null space
+    from dataclasses import replace
+    from cranefe.assemble import assemble
+    from cranefe.reuse import Reuse
+    base = load(os.path.join(ROOT, "models", "hammerhead_tower_crane.yaml"))
+    base = base.with_effects(rope_mass=3)
+    reuse = Reuse()
+    for k, EA in enumerate((1.0e7, 2.0e7, 3.0e7)):
+        model = replace(base, ropes=tuple(replace(r, EA=EA * (1 + i))
+                                          for i, r in enumerate(base.ropes)),
+                        masses=replace(base.masses, mass=base.masses.mass * (1 + k)))
+        a, b = assemble(model), assemble(model, reuse=reuse)
+        assert abs(a.K - b.K).max() == 0 and abs(a.M - b.M).max() == 0
+        assert np.array_equal(a.f, b.f)
+    # modal DofMap and static DofMap built once, found twice each
+    assert reuse.misses["dofs"] == 2 and reuse.hits["dofs"] == 4
+    assert reuse.misses["null_space"] == 1 and reuse.hits["null_space"] == 2
+
+
+# ------------------------------------------------------------- scenes and luffing
+
+LUFF = os.path.join(ROOT, "models", "portal_crane_luffing_scene.yaml")
+
+
+def test_luffing_sweep_over_scene_keys(tmp_path):
+    # parameters in the scene file; outputs equal the luffing analysis of each variant,
+    # and the optimum's mean energy follows eq. 16, T = S^2 / (2 t_k^2)
+    from cranefe.luffing.analysis import analyse
+    from cranefe.model.load import build, read_raw
+    path = tmp_path / "l.yaml"
+    path.write_text(f"""cranefe: 1
+base: {LUFF}
+parameters:
+  analysis.t_k: {{values: [12.5, 25.0]}}
+  analysis.load.mass: {{values: [16000]}}
+outputs: [luffing.optimal.T_mean_J, luffing.linear.T_ratio, luffing.linear.max_sway_deg]
+output: l.h5
+""")
+    sweep = load_sweep(path)
+    assert [p.scene for p in sweep.parameters] == [True, True]
+    done = run_sweep(sweep, workers=0)
+    raw = read_raw(LUFF)
+    for row in done.values():
+        t_k, mass = row["values"]
+        scene = dict(raw[3], analysis=dict(raw[3]["analysis"], t_k=t_k,
+                                           load={"mass": mass, "rope_length": 15.0}))
+        table = analyse(build(raw[0], raw[1], raw[2], scene, raw[4]), collocation=False,
+                        sensitivity=False).table
+        assert row["outputs"] == [table["optimal"]["T_mean_J"], table["linear"]["T_ratio"],
+                                  table["linear"]["max_sway_deg"]]
+    fast, slow = done[0]["outputs"], done[1]["outputs"]
+    assert fast[0] / slow[0] == pytest.approx(4.0, rel=1e-12)
+    assert fast[1] == pytest.approx(slow[1], rel=1e-12)      # the shape of a law: t_k-free
+
+
+def test_figures_are_the_documented_ones():
+    from cranefe.luffing.analysis import FIGURES, analyse
+    table = analyse(load(LUFF), collocation=False, sensitivity=False).table
+    assert all(tuple(figs) == FIGURES for figs in table.values())
+
+
+@pytest.mark.parametrize("base, param, output, entry, message", [
+    (BASE, "masses.H", "luffing.optimal.T_mean_J", "outputs[0]", "needs a luffing scene"),
+    (LUFF, "analysis.t_k", "luffing.fastest.T_mean_J", "outputs[0]", "unknown law"),
+    (LUFF, "analysis.t_k", "luffing.optimal.energy", "outputs[0]", "unknown figure"),
+    (LUFF, "analysis.t_k", "phi2.hoist", "outputs[0]", "needs a transient scene"),
+    (os.path.join(ROOT, "models", "two_mass_hoist_lift.yaml"), "masses.H",
+     "phi2.nope", "outputs[0]", "has no rope 'nope'"),
+    (BASE, "analysis.t_k", "frequency_hz.1", "parameters.analysis.t_k", "has no"),
+    (LUFF, "analysis.nope", "frequency_hz.1", "parameters.analysis.nope", "has no"),
+])
+def test_outputs_and_parameters_checked_against_the_base(tmp_path, capsys, base, param,
+                                                         output, entry, message):
+    path = tmp_path / "bad.yaml"
+    path.write_text(f"cranefe: 1\nbase: {base}\nparameters:\n  {param}: {{values: [1]}}\n"
+                    f"outputs: [{output}]\n")
+    assert main(["sweep", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert entry in err and message in err and "Traceback" not in err
+
+
+def test_scene_effects_parameter(tmp_path):
+    # effects.rope_mass set by the scene is swept in the scene (it overrides the model)
+    scene = tmp_path / "scene.yaml"
+    scene.write_text(f"cranefe: 1\nmodel: {BASE}\neffects: {{rope_mass: 2}}\n")
+    path = tmp_path / "e.yaml"
+    path.write_text(f"cranefe: 1\nbase: {scene}\nparameters:\n"
+                    "  effects.rope_mass: {values: [2, 8]}\noutputs: [dofs]\noutput: e.h5\n")
+    sweep = load_sweep(path)
+    assert sweep.parameters[0].scene
+    done = run_sweep(sweep, workers=0)
+    model = load(BASE)
+    assert [done[i]["outputs"][0] for i in range(2)] == [
+        float(modes(model.with_effects(rope_mass=n)).dofs) for n in (2, 8)]
+
+
+# ------------------------------------------------------------- the examples
+
+PINNED_SWEEPS = {   # (output, its largest value over the sweep), pinned from this version
+    "hoist_rope_and_load.yaml": ("frequency_hz.2", 8.29248828),
+    "portal_crane_luffing_time.yaml": ("luffing.optimal.T_mean_J", 24585.5822),
+}
+
+
+@pytest.mark.parametrize("path", sorted(glob.glob(os.path.join(ROOT, "models", "sweeps",
+                                                               "*.yaml"))),
+                         ids=os.path.basename)
+def test_example_sweeps(path, tmp_path):
+    from dataclasses import replace
+    sweep = replace(load_sweep(path), output=str(tmp_path / "t.h5"))
+    done = run_sweep(sweep, workers=0)
+    assert len(done) == len(sweep.variants)
+    assert all(r["status"] == "ok" for r in done.values())
+    output, top = PINNED_SWEEPS[os.path.basename(path)]
+    k = sweep.outputs.index(output)
+    assert max(r["outputs"][k] for r in done.values()) == pytest.approx(top, rel=1e-6)

@@ -18,6 +18,12 @@ KEYS = {"type", "boom", "pivot", "tip", "alpha0_deg", "alphak_deg", "alpha0", "a
         "rest_to_rest_tau"}
 TABLE_LAWS = ("optimal", "linear", "cubic", "quintic", "cycloidal", "trapezoidal")
 ALL_LAWS = TABLE_LAWS + ("optimal_paper", "rest_to_rest", "swing_free")
+# the figures of each law (`Luffing.figures`; sweep outputs luffing.LAW.FIGURE)
+FIGURES = ("T_mean_J", "T_ratio", "T_mean_paper_J", "peak_motor_torque_Nm", "peak_power_W",
+           "speed_jump_rad_s", "motor_impulse_Nms", "max_sway_deg", "residual_sway_deg",
+           "max_sway_linear_deg", "residual_sway_linear_deg",
+           "residual_sway_linear_exact_deg", "max_sway_paper_eq9_deg", "T_load_mean_J",
+           "peak_load_weight_torque_Nm", "max_alpha_deg", "min_alpha_deg")
 
 
 @dataclass(frozen=True)
@@ -249,21 +255,30 @@ class Luffing:
                          lambda a: C.chebval(p._to_unit(a), cs),
                          lambda a: C.chebval(p._to_unit(a), cf), a0, self.alphak, name)
 
-    def laws(self):
+    def laws(self, names=ALL_LAWS):
+        """The laws `names`, and always the optimum (every law's reference)."""
         from .laws import rest_to_rest_law, standard_law
         from .sway import swing_free_law
+        sc = self.scene
         out = {"optimal": self.optimal()}
-        for name in TABLE_LAWS[1:]:
-            out[name] = standard_law(name, self.alpha0, self.alphak)
-        out["optimal_paper"] = self.optimal("paper" if self.scene.inertia == "complete"
-                                            else "complete", name="optimal_paper")
-        out["rest_to_rest"] = rest_to_rest_law(self.proxy, self.alpha0, self.alphak,
-                                               self.scene.rest_to_rest_tau, self.scene.t_k,
-                                               self.scene.inertia)
-        out["swing_free"] = swing_free_law(self.proxy, self.alpha0, self.alphak,
-                                           self.scene.t_k, self.scene.rope_length, self.g,
-                                           out["optimal"], which=self.scene.inertia)
+        for name in names:
+            if name in TABLE_LAWS[1:]:
+                out[name] = standard_law(name, self.alpha0, self.alphak)
+            elif name == "optimal_paper":
+                out[name] = self.optimal("paper" if sc.inertia == "complete"
+                                         else "complete", name="optimal_paper")
+            elif name == "rest_to_rest":
+                out[name] = rest_to_rest_law(self.proxy, self.alpha0, self.alphak,
+                                             sc.rest_to_rest_tau, sc.t_k, sc.inertia)
+            elif name == "swing_free":
+                out[name] = swing_free_law(self.proxy, self.alpha0, self.alphak, sc.t_k,
+                                           sc.rope_length, self.g, out["optimal"],
+                                           which=sc.inertia)
         return out
+
+    def optimal_energy(self, optimal):
+        """Mean kinetic energy of the optimum, T_mean = S^2 / (2 t_k^2) (eq. 16)."""
+        return float(optimal.info["S"] ** 2 / (2 * self.scene.t_k**2))
 
     # ------------------------------------------------------------------ figures
     def mean_energy(self, law, key="J", nodes=64):
@@ -349,7 +364,7 @@ def analyse(model, file=None, collocation=True, sensitivity=True, samples=801):
     t1 = time.perf_counter()
     laws = lf.laws()
     j = "J" if sc.inertia == "complete" else "Jp"
-    T_opt = float(laws["optimal"].info["S"] ** 2 / (2 * sc.t_k**2))
+    T_opt = lf.optimal_energy(laws["optimal"])
     table, series = {}, {}
     for name in ALL_LAWS:
         table[name], series[name] = lf.figures(laws[name], T_opt, samples)
@@ -361,7 +376,7 @@ def analyse(model, file=None, collocation=True, sensitivity=True, samples=801):
         "inertia": sc.inertia,
         "T_mean_J": T_opt,
         # the paper's optimum: eq. 16 with the paper's eq. 3 inertia, and its eq. 3 energy
-        "T_mean_paper_J": float(opt_paper.info["S"] ** 2 / (2 * sc.t_k**2)),
+        "T_mean_paper_J": lf.optimal_energy(opt_paper),
         "T_mean_of_paper_law_J": lf.mean_energy(opt_paper, j),
         "paper_law_energy_excess": lf.mean_energy(opt_paper, j) / T_opt - 1,
         "max_law_difference_deg": math.degrees(float(np.abs(
@@ -418,6 +433,15 @@ def analyse(model, file=None, collocation=True, sensitivity=True, samples=801):
     timings["total"] = time.perf_counter() - t0
     result.timings = timings
     return result
+
+
+def law_figures(model, names, samples=801):
+    """{law: figures} of the laws `names` only (what a sweep asks for); the same numbers
+    as `analyse(model).table`."""
+    lf = Luffing(model, read_scene(model))
+    laws = lf.laws(names)
+    T_opt = lf.optimal_energy(laws["optimal"])
+    return {n: lf.figures(laws[n], T_opt, samples)[0] for n in names}
 
 
 def collocation_report(lf, exact, ns=range(2, 11)):

@@ -1,85 +1,88 @@
 """One variant of a sweep, computed in whatever process runs it.
 
-Work that depends only on the model's structure is reused across variants of one
-process: the DOF map (coordinates, constraints, the transform u = T q) is kept under a key
-of everything it depends on, so a sweep over stiffnesses, loads or drive inertias builds
-it once per worker (`cranefe study sweeps` measures the gain).
+Each analysis runs only if an output asks for it (modes, damping, a transient, the
+luffing laws named in the outputs). Work that depends only on the model's structure is
+reused across the variants a process runs (`cranefe.reuse.Reuse`: DOF maps and the
+static null space); `cranefe study sweeps` measures the gain.
 """
 
-import hashlib
 import time
+from functools import cached_property
 
 import numpy as np
 
-_DOFS = {}
+from ..reuse import Reuse
+
+REUSE = Reuse()          # one per process: a worker keeps it across its chunks
 
 
-def structure_key(model, effects):
-    """Everything the DOF map depends on."""
-    h = hashlib.sha1()
-    for a in (model.coords, model.ground, model.masses.nodes):
-        h.update(np.ascontiguousarray(a).tobytes())
-    h.update(repr((model.node_names, model.planar, effects,
-                   [(b.nodes, b.mass, b.com.tobytes()) for b in model.bodies],
-                   [(j.type, j.bodies, j.at, None if j.axis is None else j.axis.tobytes())
-                    for j in model.joints],
-                   [(d.node, d.brake) for d in model.drums],
-                   [(r.span_a.tobytes(), r.span_b.tobytes(), r.falls.tobytes(), r.points)
-                    for r in model.ropes],
-                   [(s.type, s.nodes, s.bodies) for s in model.springs],
-                   [(m.type, m.nodes, None if m.pairs is None else m.pairs.tobytes(),
-                     m.elements) for m in model.members],
-                   [d.nodes for d in model.linear_drives])).encode())
-    return h.hexdigest()
+class Variant:
+    """The analyses of one variant's model, each run when an output first needs it."""
+
+    def __init__(self, model, outputs, count, reuse):
+        self.model, self.outputs, self.count, self.reuse = model, outputs, count, reuse
+
+    @cached_property
+    def system(self):
+        from ..assemble import assemble
+        return assemble(self.model, reuse=self.reuse)
+
+    @cached_property
+    def modal(self):
+        from ..modal import modes
+        return modes(self.model, count=min(self.count + 6, self.system.K.shape[0]),
+                     system=self.system)
+
+    @cached_property
+    def elastic(self):
+        return self.modal.omega[~self.modal.rigid]
+
+    @cached_property
+    def damping(self):
+        from ..damping import modal_damping_ratios
+        return modal_damping_ratios(self.system, self.modal)[~self.modal.rigid]
+
+    @cached_property
+    def transient(self):
+        from ..transient.integrate import simulate
+        return simulate(self.model, reuse=self.reuse)
+
+    @cached_property
+    def luffing(self):
+        from ..luffing.analysis import law_figures
+        laws = {o.split(".")[1] for o in self.outputs if o.startswith("luffing.")}
+        return law_figures(self.model, sorted(laws))
+
+    def value(self, name):
+        """The output `name` (grammar: cranefe.sweeps.spec.OUTPUT)."""
+        kind, _, arg = name.partition(".")
+        if kind == "dofs":
+            return self.modal.dofs
+        if kind in ("phi2", "rope_force_max"):
+            k = self.transient.rope_names.index(arg)
+            return (self.transient.dynamic_factor if kind == "phi2"
+                    else self.transient.rope_force_max)[k]
+        if kind == "luffing":
+            law, figure = arg.split(".")
+            return self.luffing[law][figure]
+        k = int(arg) - 1                       # the K-th elastic mode
+        if kind == "damping_ratio":
+            return self.damping[k] if k < len(self.damping) else np.nan
+        w = self.elastic[k] if k < len(self.elastic) else np.nan
+        return {"omega": w, "frequency_hz": w / (2 * np.pi), "period_s": 2 * np.pi / w}[kind]
 
 
 def evaluate(job):
     """job = (raw, parameters, outputs, modes, reuse, index, values) -> result dict."""
-    from ..assemble import assemble
-    from ..dofs import build_dofs
     from ..errors import AnalysisError, ModelError
     from ..model import build
-    from ..modal import modes
     from .spec import apply
     raw, parameters, outputs, count, reuse, index, values = job
     t0 = time.perf_counter()
     try:
-        model = build(apply(raw[0], parameters, values), *raw[1:])
-        dofs = None
-        if reuse:
-            key = structure_key(model, model.effects)
-            dofs = _DOFS.get(key)
-            if dofs is None:
-                dofs = _DOFS.setdefault(key, build_dofs(model, model.effects))
-        system = assemble(model, dofs=dofs)
-        r = modes(model, count=min(count + 6, system.K.shape[0]), system=system)
-        elastic = r.omega[~r.rigid]
-        damping, transient = None, None
-        out = []
-        for name in outputs:
-            if name.startswith(("phi2.", "rope_force_max.")):
-                if transient is None:                 # the base is a transient scene
-                    from ..transient.integrate import simulate
-                    transient = simulate(model)
-                rope = name.split(".", 1)[1]
-                k = transient.rope_names.index(rope)
-                out.append(float(transient.dynamic_factor[k] if name.startswith("phi2")
-                                 else transient.rope_force_max[k]))
-                continue
-            if name == "dofs":
-                out.append(float(r.dofs))
-                continue
-            kind, k = name.split(".")
-            k = int(k) - 1
-            if kind == "damping_ratio":
-                if damping is None:
-                    from ..damping import modal_damping_ratios
-                    damping = modal_damping_ratios(system, r)[~r.rigid]
-                out.append(float(damping[k]) if k < len(damping) else np.nan)
-                continue
-            w = elastic[k] if k < len(elastic) else np.nan
-            out.append(float({"omega": w, "frequency_hz": w / (2 * np.pi),
-                              "period_s": 2 * np.pi / w}[kind]))
+        model = build(*apply(raw, parameters, values))
+        variant = Variant(model, outputs, count, REUSE if reuse else None)
+        out = [float(variant.value(o)) for o in outputs]
         return {"index": index, "values": list(map(float, values)), "outputs": out,
                 "status": "ok", "error": "", "seconds": time.perf_counter() - t0}
     except (ModelError, AnalysisError) as exc:

@@ -15,13 +15,16 @@ from ..model.yamlio import read_yaml
 SWEEP_KEYS = {"cranefe", "sweep", "base", "parameters", "sampling", "outputs", "modes",
               "output"}
 OUTPUT = re.compile(r"^(frequency_hz|omega|period_s|damping_ratio)\.([1-9][0-9]*)$|^dofs$"
-                    r"|^(phi2|rope_force_max)\.[A-Za-z0-9_-]+$")
+                    r"|^(phi2|rope_force_max)\.[A-Za-z0-9_-]+$|^luffing\.\w+\.\w+$")
+# outputs that need a scene of this analysis type as the base
+NEEDS = {"phi2": "transient", "rope_force_max": "transient", "luffing": "luffing"}
 
 
 @dataclass(frozen=True)
 class Parameter:
     name: str                 # the path as written, "ropes.hoist.EA"
     path: tuple               # keys (ints index lists)
+    scene: bool = False       # the path is in the scene file (else in the model file)
     values: tuple = None      # explicit values, or
     low: float = None         # a range
     high: float = None
@@ -56,17 +59,14 @@ def load_sweep(path):
         r.fail("base", f"base model or scene {base!r} not found; give its path relative "
                "to the sweep file")
     raw = read_raw(os.path.join(folder, base))
-    params = tuple(_parameter(name, spec, raw[0], r)
+    params = tuple(_parameter(name, spec, raw, r)
                    for name, spec in r.mapping(data["parameters"], "parameters").items())
     if not params:
         r.fail("parameters", "name at least one parameter, e.g. ropes.hoist.EA: "
                "{values: [1.0e7, 2.0e7]}")
     outputs = tuple(r.listing(data["outputs"], "outputs", min_len=1))
     for k, o in enumerate(outputs):
-        if not isinstance(o, str) or not OUTPUT.match(o):
-            r.fail(f"outputs[{k}]", f"unknown output {o!r}; use frequency_hz.K, omega.K, "
-                   "period_s.K, damping_ratio.K (K = 1 for the first elastic mode), dofs, "
-                   "or with a transient scene as base phi2.ROPE, rope_force_max.ROPE")
+        _output(o, f"outputs[{k}]", raw, r)
     needed = max([int(o.split(".")[1]) for o in outputs
                   if "." in o and o.split(".")[1].isdigit()] + [1])
     modes = r.integer(data.get("modes", needed), "modes", minimum=needed)
@@ -78,25 +78,75 @@ def load_sweep(path):
                  variants, outputs, modes, os.path.join(folder, out))
 
 
-def _parameter(name, spec, model_data, r):
+def _output(o, entry, raw, r):
+    """Check an output name against what the base can compute."""
+    if not isinstance(o, str) or not OUTPUT.match(o):
+        r.fail(entry, f"unknown output {o!r}; use frequency_hz.K, omega.K, period_s.K, "
+               "damping_ratio.K (K = 1 for the first elastic mode), dofs; with a transient "
+               "scene as base phi2.ROPE, rope_force_max.ROPE; with a luffing scene "
+               "luffing.LAW.FIGURE (docs/sweeps.md)")
+    kind, _, arg = o.partition(".")
+    if kind not in NEEDS:
+        return
+    scene = raw[3] or {}
+    analysis = scene.get("analysis") if isinstance(scene.get("analysis"), dict) else {}
+    if analysis.get("type") != NEEDS[kind]:
+        r.fail(entry, f"{o} needs a {NEEDS[kind]} scene as the base (one with "
+               f"'analysis: {{type: {NEEDS[kind]}, ...}}'); the base is "
+               + (f"a {analysis.get('type', 'modes')} scene" if raw[3] else "a model file"))
+    if kind == "luffing":
+        from ..luffing.analysis import ALL_LAWS, FIGURES
+        law, _, figure = arg.partition(".")
+        if law not in ALL_LAWS:
+            r.fail(entry, f"unknown law {law!r}; the laws are {', '.join(ALL_LAWS)}")
+        if figure not in FIGURES:
+            r.fail(entry, f"unknown figure {figure!r} of a law; use one of "
+                   f"{', '.join(FIGURES)}")
+    else:
+        ropes = raw[0].get("ropes") if isinstance(raw[0].get("ropes"), dict) else {}
+        if arg not in ropes:
+            r.fail(entry, f"the model has no rope '{arg}'; its ropes: "
+                   f"{', '.join(map(str, ropes)) or 'none'}")
+
+
+def _locate(path, raw):
+    """(in the scene?, the value addressed) of a parameter's path, or None.
+
+    With a scene as the base, 'analysis...' is in the scene, 'effects...' in the scene
+    when the scene sets it (its effects override the model's), all else in the model."""
+    def walk(data):
+        for key in path:
+            if not ((isinstance(data, dict) and key in data) or
+                    (isinstance(data, list) and isinstance(key, int) and key < len(data))):
+                return None
+            data = data[key]
+        return (data,)
+    scene = raw[3]
+    if scene is not None and path[0] in ("analysis", "effects"):
+        found = walk(scene)
+        if found or path[0] == "analysis":
+            return (True, *found) if found else None
+    found = walk(raw[0])
+    return (False, *found) if found else None
+
+
+def _parameter(name, spec, raw, r):
     e = f"parameters.{name}"
     path = tuple(int(p) if p.isdigit() else p for p in name.split("."))
-    target = model_data
-    for k, key in enumerate(path):
-        ok = (isinstance(target, dict) and key in target) or \
-            (isinstance(target, list) and isinstance(key, int) and key < len(target))
-        if not ok:
-            r.fail(e, f"the base model has no '{'.'.join(map(str, path[:k + 1]))}'; a "
-                   "parameter is a path into the model file, e.g. ropes.hoist.EA or masses.B")
-        target = target[key]
+    found = _locate(path, raw)
+    if found is None:
+        r.fail(e, f"the base {'scene' if raw[3] is not None else 'model'} has no "
+               f"'{name}'; a parameter is a path into the model file, e.g. ropes.hoist.EA "
+               "or masses.B (with a scene as the base also analysis... and effects...)")
+    in_scene, target = found
     if isinstance(target, bool) or not isinstance(target, (int, float)):
         r.fail(e, f"addresses {type(target).__name__} {target!r}, not a number; address "
                "the number itself (e.g. masses.B.mass)")
     r.keys(spec, e, {"values", "range", "count", "scale"})
     if "values" in spec:
         vals = r.listing(spec["values"], f"{e}.values", min_len=1)
-        return Parameter(name, path, tuple(r.number(v, f"{e}.values[{i}]")
-                                           for i, v in enumerate(vals)))
+        return Parameter(name, path, in_scene, tuple(r.number(v, f"{e}.values[{i}]")
+                                                     for i, v in enumerate(vals)))
     if "range" not in spec:
         r.fail(e, "give 'values: [...]' or 'range: [low, high]' (with 'count' for a grid)")
     rng = r.listing(spec["range"], f"{e}.range", min_len=2)
@@ -107,7 +157,7 @@ def _parameter(name, spec, model_data, r):
     if spec.get("scale", "linear") not in ("linear", "log") or (log and lo <= 0):
         r.fail(f"{e}.scale", "is linear or log (log needs a positive range)")
     count = r.integer(spec["count"], f"{e}.count", minimum=1) if "count" in spec else None
-    return Parameter(name, path, None, lo, hi, count, log)
+    return Parameter(name, path, in_scene, None, lo, hi, count, log)
 
 
 def _grid(p):
@@ -148,12 +198,12 @@ def _variants(params, sampling, r):
     return np.column_stack(cols)
 
 
-def apply(model_data, parameters, values):
-    """A copy of the raw model data with each parameter set to its value."""
-    data = copy.deepcopy(model_data)
+def apply(raw, parameters, values):
+    """A copy of `read_raw`'s data of the base with each parameter set to its value."""
+    model, scene = copy.deepcopy(raw[0]), copy.deepcopy(raw[3])
     for p, v in zip(parameters, values):
-        target = data
+        target = scene if p.scene else model
         for key in p.path[:-1]:
             target = target[key]
         target[p.path[-1]] = float(v)
-    return data
+    return (model, raw[1], raw[2], scene, raw[4])

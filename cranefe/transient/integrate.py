@@ -44,17 +44,18 @@ def time_step(spec, omega_max):
     return h, warnings
 
 
-def simulate(model, progress=None):
+def simulate(model, progress=None, reuse=None):
     """Integrate the transient scene of `model` -> `TransientResult`.
 
     progress : callable (t, duration) or None, called after each step.
+    reuse : `cranefe.reuse.Reuse` of earlier models of the same structure (sweeps).
     """
     t0 = time.perf_counter()
     spec = parse(model)
     moving = any(np.any(d.profile.values) for d in spec.drums if d.kind == "speed")
     damping = spec.method == "direct" or model.effects.damping == "exact" or \
         (model.effects.damping != "none" and moving)     # coupling of prescribed drums
-    problem = Problem(model, spec, damping=damping)
+    problem = Problem(model, spec, damping=damping, reuse=reuse)
     t1 = time.perf_counter()
     eq, info = METHODS[spec.method](problem, spec)
     warnings = list(problem.warnings) + list(info["warnings"])

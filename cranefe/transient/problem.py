@@ -81,9 +81,9 @@ def highest_omega(system):
 class Problem:
     """The physical equations of a scene (see the module docstring)."""
 
-    def __init__(self, model, spec, damping=True):
+    def __init__(self, model, spec, damping=True, reuse=None):
         """damping=False leaves the viscous matrix out (modal superposition damps its
-        principal coordinates itself)."""
+        principal coordinates itself); reuse: a `cranefe.reuse.Reuse` (sweeps)."""
         from ..statics import solve_static
         self.model, self.spec = model, spec
         file = model.scene_file or model.file
@@ -92,7 +92,7 @@ class Problem:
             raise ModelError("a transient needs elastic ropes (their forces are what it "
                              "computes); remove rope_elasticity: false", file,
                              "effects.rope_elasticity")
-        self.system = system = assemble(model)
+        self.system = system = assemble(model, reuse=reuse)
         dofs = system.dofs
         self.n = n = dofs.n
         self.labels = dofs.labels
@@ -103,7 +103,7 @@ class Problem:
         self.c = springs.c[rows].astype(float)
         self.rope_of_row = springs.rope[rows]
         hanging = system.static if system.static is not None else \
-            solve_static(model, eff)
+            solve_static(model, eff, reuse)
         self.hanging = hanging.element_force[rows]
         K = system.K
         self.drum_q = {d: dofs.labels.index(f"drum {dr.name}")
