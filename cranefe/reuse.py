@@ -26,6 +26,10 @@ class Reuse:
         self._stores = {"dofs": OrderedDict(), "null_space": OrderedDict()}
         self.hits, self.misses = Counter(), Counter()
 
+    def clear(self):
+        """Forget everything kept, and the counts."""
+        self.__init__(self.size)
+
     def _get(self, kind, key, make):
         store = self._stores[kind]
         if key in store:

@@ -375,3 +375,11 @@ def test_example_sweeps(path, tmp_path):
     output, top = PINNED_SWEEPS[os.path.basename(path)]
     k = sweep.outputs.index(output)
     assert max(r["outputs"][k] for r in done.values()) == pytest.approx(top, rel=1e-6)
+
+
+def test_a_sweep_stopped_before_any_result_writes_an_empty_table(tmp_path):
+    # the table of no rows once failed to reshape, hiding why the sweep stopped
+    sweep = load_sweep(sweep_file(tmp_path))
+    assert run_sweep(sweep, workers=0, limit=0) == {}
+    table = read_table(sweep.output)
+    assert table.values.shape == (0, 2) and table.results.shape == (0, 4)

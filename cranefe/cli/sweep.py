@@ -11,7 +11,8 @@ def add_arguments(p):
     g.add_argument("--scheduler", metavar="ADDRESS",
                    help="run on a Dask distributed cluster (e.g. tcp://host:8786)")
     p.add_argument("--no-reuse", action="store_true",
-                   help="rebuild the DOF map for every variant (for measuring)")
+                   help="reuse nothing across variants (DOF maps, the static null "
+                   "space): for measuring")
     p.add_argument("--plots", metavar="DIR", help="write output-vs-parameter PNGs")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
 

@@ -70,10 +70,11 @@ def write_table(path, sweep, done):
             h.create_dataset("parameters", data=[p.name for p in sweep.parameters], dtype=s)
             h.create_dataset("outputs", data=list(sweep.outputs), dtype=s)
             h.create_dataset("index", data=np.array([r["index"] for r in rows], dtype=int))
-            h.create_dataset("values", data=np.array([r["values"] for r in rows],
-                                                     dtype=float).reshape(len(rows), -1))
+            h.create_dataset("values", data=np.array([r["values"] for r in rows], dtype=float)
+                             .reshape(len(rows), len(sweep.parameters)))
             h.create_dataset("results", data=np.array([r["outputs"] for r in rows],
-                                                      dtype=float).reshape(len(rows), -1))
+                                                      dtype=float)
+                             .reshape(len(rows), len(sweep.outputs)))
             h.create_dataset("status", data=[r["status"] for r in rows], dtype=s)
             h.create_dataset("errors", data=[r["error"] for r in rows], dtype=s)
             h.create_dataset("seconds", data=np.array([r["seconds"] for r in rows]))
