@@ -396,7 +396,12 @@ def exact_viscous(system, V, omega, zeta, Kpsi=None, coupling=None, which=None):
             ev, Z = sla.eig(A, E)
             ok = np.isfinite(ev) & (ev.imag >= -1e-9 * np.abs(ev))
             ev, Z = ev[ok], Z[:, ok]
-            best = np.argmax(_participation(V[:, i], M, Z[:n]))
+            # participation decides; a near-tie goes to the root nearest the decoupled
+            # estimate: a massless coordinate beside a dashpot adds a real relaxation
+            # root whose shape on the masses can be the mode's own (participation 1)
+            part = _participation(V[:, i], M, Z[:n])
+            near = np.flatnonzero(part >= (1 - 1e-3) * part.max())
+            best = near[np.argmin(np.abs(ev[near] - sigma[i]))]
             shift = ev[best] + 1e-6 * abs(ev[best])
             lam[out] = _refine(_quadratic_op(K, B, M, shift), ev[best], shift, Z[:, best])
         else:

@@ -378,3 +378,70 @@ def test_study_quick_writes_its_files(tmp_path):
     assert list(rows[0]) == KEYS and {r["case"] for r in rows} == {
         "hoist_chain", "tower_crane", "close_pair"}
     assert os.path.getsize(paths[1]) > 10_000
+
+
+SERIES = """cranefe: 1
+name: massless block in series
+plane: xz
+nodes: {S: [0, 0, 20], D: [0, 0, 12], B: [0, 0, 5]}
+ground: [S]
+masses: {B: 2000}
+ropes:
+  r1: {EA: 1.0e7, psi: 0.2, path: [S, {node: D, falls: 2}]}
+  r2: {EA: 2.0e7, path: [D, {node: B, falls: 3}]}
+"""
+
+
+def test_massless_block_beside_a_dashpot_keeps_the_oscillating_root(tmp_path):
+    # Block D is massless; only the upper rope absorbs. Viscously damped, D has a real
+    # relaxation root whose shape on the mass is the hoist mode's own: the exact answer
+    # once picked it (zeta = 1). With x = z_B, y = z_D: m x'' + k2 (x - y) = 0 and
+    # k1 y + b y' = k2 (x - y), so m b s^3 + m (k1 + k2) s^2 + k2 b s + k1 k2 = 0 with
+    # k1 = 2^2 EA1 / 16 m, k2 = 3^2 EA2 / 21 m, b = psi k1 / (2 pi w) at the undamped w.
+    import mpmath
+    mpmath.mp.dps = 30
+    path = tmp_path / "series.yaml"
+    path.write_text(SERIES)
+    m = mpmath.mpf(2000)
+    k1, k2 = 4 * mpmath.mpf("1e7") / 16, 9 * mpmath.mpf("2e7") / 21
+    w = mpmath.sqrt(k1 * k2 / (k1 + k2) / m)
+    b = mpmath.mpf("0.2") * k1 / (2 * mpmath.pi * w)
+    roots = mpmath.polyroots([m * b, m * (k1 + k2), k2 * b, k1 * k2], maxsteps=200,
+                             extraprec=60)
+    lam = next(r for r in roots if mpmath.im(r) > 0)
+    zeta_exact = float(-mpmath.re(lam) / abs(lam))
+    r = damping(load(path), "both")
+    hoist = int(np.argmax(r.zeta))
+    assert r.omega[hoist] == pytest.approx(float(w), rel=1e-12)
+    # QZ then refined by inverse iteration: to round-off of the 1e4 spread of the roots
+    assert r.exact_zeta[hoist] == pytest.approx(zeta_exact, rel=1e-9)
+    assert r.exact_damped_omega[hoist] == pytest.approx(float(mpmath.im(lam)), rel=1e-9)
+
+
+COUPLED = """cranefe: 1
+name: two close oscillators
+plane: xz
+nodes: {G1: [0, 0, 0], A: [0, 0, 1], B: [0, 0, 2], G2: [0, 0, 3]}
+ground: [G1, G2]
+masses: {A: 1000, B: 1000}
+springs:
+  - {name: ka, type: axial, nodes: [G1, A], stiffness: 1.0e6, psi: 0.0}
+  - {name: kb, type: axial, nodes: [B, G2], stiffness: 1.01e6, psi: 0.6}
+  - {name: kab, type: axial, nodes: [A, B], stiffness: 1.0e4, psi: 0.0}
+effects: {sway: false, damping: modal}
+"""
+
+
+def test_modes_of_a_damping_scene_see_partners_beyond_the_count(tmp_path, capsys):
+    # `modes --count 1` once judged mode 1's coupling without mode 2 (coupling 0, "weak")
+    # and its JSON dropped the damping warnings
+    path = tmp_path / "coupled.yaml"
+    path.write_text(COUPLED)
+    assert main(["damping", str(path), "--count", "1", "--json"]) == 0
+    ref = json.loads(capsys.readouterr().out)
+    assert main(["modes", str(path), "--count", "1", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    mine, theirs = doc["damping"][0], ref["modes"][0]
+    assert mine == {k: theirs[k] for k in mine}
+    assert doc["damping"][0]["coupling"] > 0.5 and not doc["damping"][0]["weak_coupling"]
+    assert any("weak-coupling criterion fails" in w for w in doc["warnings"])

@@ -31,14 +31,18 @@ def run(args):
     comparison = drive_reduction(model, result) if model.effects.drive == "reduced" else None
     results = {"modes": result}
     if model.effects.damping != "none":        # a scene asking for damping gets it too
-        from ..damping import damping
-        results["damping"] = damping(model, model.effects.damping, system=system,
-                                     modal=result)
+        from ..damping import damping, partner_modes
+        # with the coupling partners beyond the modes shown, as `cranefe damping`
+        modal, shown = partner_modes(model, system, len(result.omega))
+        results["damping"] = damping(model, model.effects.damping, shown, system=system,
+                                     modal=modal)
     if args.json:
         doc = modes_document(result, comparison)
         if "damping" in results:
             from ..report import damping_document
             doc["damping"] = damping_document(results["damping"])["modes"]
+            doc["warnings"] += [w for w in results["damping"].warnings
+                                if w not in doc["warnings"]]
         print(dumps(doc))
     else:
         print(modes_table(result, comparison))
