@@ -101,15 +101,38 @@ def psi_stiffness(system):
                                system.beam_psi if system.beams is not None else 0.0)
 
 
-def damping_matrix(system, omega, k1=1.0, k1_beams=1.0):
+def damping_matrix(system, omega, k1=1.0, k1_beams=1.0, omega_beams=None):
     """Viscous matrix B = (R T)^T diag(b) (R T) + beams, with b of eq. 12-13 at `omega`.
 
+    omega : scalar or (n_rows,) per spring row; omega_beams : the beams' (default omega).
     k1 : scalar or (n_rows,) per spring row (poly-harmonic weighting, eq. 13).
     """
     s = system.springs
     beam_psi = system.beam_psi if system.beams is not None else 0.0
+    omega_beams = omega if omega_beams is None else omega_beams
     return _weighted_stiffness(system, equivalent_viscous(s.psi, 1.0, omega, k1),
-                               equivalent_viscous(beam_psi, 1.0, omega, k1_beams))
+                               equivalent_viscous(beam_psi, 1.0, omega_beams, k1_beams))
+
+
+def element_frequencies(system, V, omega):
+    """The frequency each element mostly vibrates at, for eq. 12 in one viscous matrix.
+
+    Per spring row and per beam element: the frequency of the mode (columns of V,
+    mass-normalised, generalised coordinates; omega (m,)) that stores the largest share
+    of its strain energy, c (r v_j)^2 / w_j^2, in that element. An element no mode
+    strains gets the lowest frequency. Returns (rows (n_rows,), beams (n_beams,)).
+    """
+    T = system.dofs.T
+    s = system.springs
+    E = np.asarray((s.R @ T) @ V)                          # (ne, m) elongations
+    rows = omega[np.argmax(s.c[:, None] * E**2 / omega**2, axis=1)]
+    beams = np.zeros(0)
+    if system.beams is not None and len(system.beams.mat):
+        b = system.beams
+        TV = np.asarray(T @ V)[b.idx]                      # (nb, 12, m)
+        energy = np.einsum("eam,eab,ebm->em", TV, b.mat, TV)
+        beams = omega[np.argmax(energy / omega**2, axis=1)]
+    return rows, beams
 
 
 # ---------------------------------------------------------------- modal level

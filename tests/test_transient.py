@@ -245,3 +245,22 @@ def test_automatic_time_step(tmp_path):
                                        f"    hoist: {{torque: {ex['torque']}}}\n",
                        effects="{sway: false, rope_mass: 8}", name="b.yaml"))
     assert r.steps == 400 and "capped" in r.warnings[0]
+
+
+@pytest.mark.parametrize("sway", ["true", "false"])
+def test_exact_damping_at_the_frequency_that_strains_the_rope(tmp_path, sway):
+    # damping: exact makes each element a dashpot b = psi c / (2 pi w) at the frequency
+    # of the mode that most strains it. With sway the lowest mode is the pendulum, which
+    # does not stretch the rope; at its frequency the hoisting mode got 20 x its damping.
+    # One absorbing rope: B = (b / c) K, so the hoisting mode has zeta = psi / (4 pi) and
+    # the step-torque peak is S0 + dS (1 + exp(-zeta pi / sqrt(1 - zeta^2))).
+    text, ex = cases.hoist_step_torque(ratio=1.6)
+    psi = 0.3
+    text = text.replace("path: [hoist", f"psi: {psi}, path: [hoist")
+    r = simulate(scene(tmp_path, text, f"  duration: 0.5\n  time_step: 2e-4\n  drums:\n"
+                                       f"    hoist: {{torque: {ex['torque']}}}\n",
+                       effects=f"{{sway: {sway}, damping: exact}}"))
+    zeta = psi / (4 * np.pi)
+    peak = ex["S0"] + ex["dS"] * (1 + np.exp(-zeta * np.pi / np.sqrt(1 - zeta**2)))
+    # trapezoidal rule: phase and amplitude errors of order (w h)^2 / 12 ~ 1e-6
+    assert r.rope_force_max[0] == pytest.approx(peak, rel=1e-5)

@@ -238,25 +238,25 @@ class Problem:
     def _damping(self):
         """(C, U, W): modal damping C = M V diag(2 zeta w) V^T M of the structure with
         the prescribed drums held (formed, or kept low-rank as U diag(W) U^T on large
-        models); `exact`: the viscous K_psi / (2 pi w_1) at the fundamental frequency."""
+        models); `exact`: the viscous b = psi c / (2 pi w_e) of every element at the
+        frequency of the mode that most strains it (`damping.element_frequencies`)."""
         kind = self.model.effects.damping
         if kind == "none":
             return None, None, None
-        from ..damping import modal_damping_ratios, psi_stiffness
+        from ..damping import (damping_matrix, element_frequencies,
+                               modal_damping_ratios)
         from ..modal import modes
         sub = self.sub
         big = sub.K.shape[0] > 1500
         modal = modes(self.model, system=sub, count=SPARSE_DAMPED_MODES if big else None)
         el = ~modal.rigid
-        if kind == "exact":
-            w1 = modal.omega[el][0]
-            self.warnings.append(f"damping exact: viscous b = psi c / (2 pi w_1) at the "
-                                 f"fundamental frequency {w1 / (2 * np.pi):.4g} Hz")
-            return (psi_stiffness(self.system) / (2 * np.pi * w1)).tocsr(), None, None
-        zeta = modal_damping_ratios(sub, modal)[el]
         w = modal.omega[el]
         V = np.zeros((self.n, el.sum()))
         V[self.free] = modal.shapes[:, el]
+        if kind == "exact":
+            rows, beams = element_frequencies(self.system, V, w)
+            return damping_matrix(self.system, rows, omega_beams=beams), None, None
+        zeta = modal_damping_ratios(sub, modal)[el]
         U = np.asarray(self.system.M @ V)
         W = 2 * zeta * w
         if big:
