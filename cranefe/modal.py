@@ -70,8 +70,14 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
         raise no_inertia(model)
     t1 = time.perf_counter()
     warnings = []
+    moving = int(np.sum(system.M.diagonal() > 0))
+    if solver == "sparse" and (count or 10) >= moving:     # ARPACK finds k < n only
+        warnings.append(f"--solver sparse finds fewer than all {moving} modes of this "
+                        "model: solved densely")
+        solver = "dense"
     if solver == "dense":
-        omega, shapes, rigid, qc, ml, warnings = _dense(system, count)
+        omega, shapes, rigid, qc, ml, dense_warnings = _dense(system, count)
+        warnings += dense_warnings
     else:
         omega, shapes, rigid, qc, ml = _sparse(system, count or 10)
     t2 = time.perf_counter()
