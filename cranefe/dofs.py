@@ -175,20 +175,21 @@ def direction_tensor(model, effects, n_nodes):
     return D
 
 
-# Model values that build_dofs never reads: models that differ only in these share one
-# DofMap (sweeps reuse it). Everything else is structure, so a field added later counts
-# as structure until it is listed here; tests/test_sweeps.py perturbs every number of
-# the examples and checks that an unchanged key means an unchanged DofMap. A rope's
-# mass_per_length decides only whether it is discretised (rope_mass: N).
+# Model values that build_dofs never reads, or reads only in part: models that differ
+# only in these share one DofMap (sweeps reuse it). Each maps to what of it the key
+# keeps (None: nothing); a rope's mass_per_length only decides whether it is
+# discretised (rope_mass: N). Everything else is structure, so a field added later
+# counts as structure until it is listed here; tests/test_sweeps.py perturbs every
+# number of the examples and checks that an unchanged key means an unchanged DofMap.
 VALUE_ONLY = {
-    "Model": {"text", "analysis"},
-    "Body": {"inertia"},
-    "PointMasses": {"mass", "inertia"},
-    "Spring": {"stiffness", "psi"},
-    "Drum": {"inertia", "rotor_inertia", "gear_ratio"},
-    "Rope": {"EA", "psi", "mass_per_length"},
-    "Member": {"E", "G", "A", "Iy", "Iz", "J", "rho", "psi", "mass"},
-    "LinearDrive": {"pinion_radius", "gear_ratio", "rotor_inertia"},
+    "Model": {"text": None, "analysis": None},
+    "Body": {"inertia": None},
+    "PointMasses": {"mass": None, "inertia": None},
+    "Spring": {"stiffness": None, "psi": None},
+    "Drum": {"inertia": None, "rotor_inertia": None, "gear_ratio": None},
+    "Rope": {"EA": None, "psi": None, "mass_per_length": lambda mu: mu > 0},
+    "Member": dict.fromkeys(("E", "G", "A", "Iy", "Iz", "J", "rho", "psi", "mass")),
+    "LinearDrive": {"pinion_radius": None, "gear_ratio": None, "rotor_inertia": None},
 }
 
 
@@ -198,14 +199,16 @@ def structure_key(model, effects=None):
 
     def feed(x):
         if dataclasses.is_dataclass(x):
-            skip = VALUE_ONLY.get(type(x).__name__, ())
+            partial = VALUE_ONLY.get(type(x).__name__, {})
             h.update(type(x).__name__.encode())
             for f in dataclasses.fields(x):
-                if f.name not in skip:
-                    h.update(f.name.encode())
-                    feed(getattr(x, f.name))
-            if type(x).__name__ == "Rope":
-                feed(x.mass_per_length > 0)
+                value = getattr(x, f.name)
+                if f.name in partial:
+                    if partial[f.name] is None:
+                        continue
+                    value = partial[f.name](value)
+                h.update(f.name.encode())
+                feed(value)
         elif isinstance(x, np.ndarray):
             h.update(f"{x.dtype}{x.shape}".encode())
             h.update(np.ascontiguousarray(x).tobytes())

@@ -109,25 +109,32 @@ def _output(o, entry, raw, r):
                    f"{', '.join(map(str, ropes)) or 'none'}")
 
 
+MISSING = object()
+
+
+def _walk(data, path):
+    """The value at `path` in raw YAML data, or MISSING."""
+    for key in path:
+        if not ((isinstance(data, dict) and key in data) or
+                (isinstance(data, list) and isinstance(key, int) and key < len(data))):
+            return MISSING
+        data = data[key]
+    return data
+
+
 def _locate(path, raw):
     """(in the scene?, the value addressed) of a parameter's path, or None.
 
     With a scene as the base, 'analysis...' is in the scene, 'effects...' in the scene
     when the scene sets it (its effects override the model's), all else in the model."""
-    def walk(data):
-        for key in path:
-            if not ((isinstance(data, dict) and key in data) or
-                    (isinstance(data, list) and isinstance(key, int) and key < len(data))):
-                return None
-            data = data[key]
-        return (data,)
-    scene = raw[3]
-    if scene is not None and path[0] in ("analysis", "effects"):
-        found = walk(scene)
-        if found or path[0] == "analysis":
-            return (True, *found) if found else None
-    found = walk(raw[0])
-    return (False, *found) if found else None
+    if raw[3] is not None and path[0] in ("analysis", "effects"):
+        value = _walk(raw[3], path)
+        if value is not MISSING:
+            return True, value
+        if path[0] == "analysis":
+            return None
+    value = _walk(raw[0], path)
+    return None if value is MISSING else (False, value)
 
 
 def _parameter(name, spec, raw, r):
