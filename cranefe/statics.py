@@ -12,12 +12,12 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .assemble import elastic_stiffness, mass_and_gravity, pattern
+from .assembly.assemble import elastic_stiffness, mass_and_gravity, pattern
 from .condense import STATIC_DENSE_MAX, null_space
-from .dofs import build_dofs
-from .elements import span_geometry
+from .coordinates.dofmap import build_dofs
+from .elements.kernels import span_geometry
 from .errors import AnalysisError, ModelError
-from .members import element_sections
+from .coordinates.members import element_sections
 from .model import GROUND
 
 

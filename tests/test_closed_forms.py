@@ -5,10 +5,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cranefe.assemble import assemble
+from cranefe.assembly.assemble import assemble
 from cranefe.cli import main
 from cranefe.condense import condense
-from cranefe.modal import drive_reduction, modes
+from cranefe.analysis.modal import drive_reduction, modes
 
 G = 9.81
 # Closed forms are exact for the linear model; only round-off remains.

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 import scipy.linalg as sla
 
-from cranefe import damping as dmod
+from cranefe.analysis import damping as dmod
 from cranefe.cli import main
-from cranefe.damping import (KAPPA, damping, damping_matrix, equivalent_viscous,
+from cranefe.analysis.damping import (KAPPA, damping, damping_matrix, equivalent_viscous,
                              polyharmonic_k1, psi_stiffness)
 from cranefe.model import load
 
@@ -124,7 +124,7 @@ def test_chains_with_damping_on_one_element_match_state_space(ks, ms, psis):
 def test_modal_damping_matrix_and_equivalent_viscous_rows():
     ks, ms, psis = [3.0e4, 1.0e4, 2.0e4], [80.0, 40.0, 60.0], [0.1, 0.8, 0.3]
     model = chain(ks, ms, psis)
-    from cranefe.assemble import assemble
+    from cranefe.assembly.assemble import assemble
     system = assemble(model)
     K, M, P = chain_matrices(ks, ms, psis)
     np.testing.assert_allclose(psi_stiffness(system).toarray(), P, rtol=1e-14)
@@ -351,7 +351,7 @@ effects: {structure: flexible}
 
 
 def test_archive_keeps_the_result(tmp_path, capsys):
-    from cranefe.archive import read
+    from cranefe.outputs.archive import read
     out = tmp_path / "d.h5"
     assert main(["damping", HOIST, "--method", "both", "--archive", str(out)]) == 0
     back = read(out).results["damping"]

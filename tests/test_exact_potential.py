@@ -10,7 +10,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 mp.mp.dps = 50
 G = 9.81

@@ -9,7 +9,7 @@ import pytest
 
 from cranefe.cli import main
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = sorted(glob.glob(os.path.join(ROOT, "models", "*.yaml")))

@@ -9,7 +9,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TOWER = os.path.join(ROOT, "models", "hammerhead_tower_crane.yaml")

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 G = 9.81
 

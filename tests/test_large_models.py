@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from cranefe.cli import main
-from cranefe.generate import panels_for, to_yaml, tower_crane, with_meshes
+from cranefe.model.generate import panels_for, to_yaml, tower_crane, with_meshes
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 
 @pytest.fixture(scope="module")

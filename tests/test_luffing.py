@@ -7,11 +7,11 @@ import os
 import numpy as np
 import pytest
 
-from cranefe.luffing.analysis import Luffing, analyse, read_scene
-from cranefe.luffing.cases import paper_linkage
-from cranefe.luffing.energy import Reduced
-from cranefe.luffing.kinematics import Linkage
-from cranefe.luffing.optimum import (GRID, bvp, chebyshev_points, collocation,
+from cranefe.analysis.luffing.analysis import Luffing, analyse, read_scene
+from cranefe.analysis.luffing.cases import paper_linkage
+from cranefe.analysis.luffing.energy import Reduced
+from cranefe.analysis.luffing.kinematics import Linkage
+from cranefe.analysis.luffing.optimum import (GRID, bvp, chebyshev_points, collocation,
                                      equally_spaced, law_error, paper_collocation,
                                      paper_map, paper_trial)
 from cranefe.model import load
@@ -244,7 +244,7 @@ def test_sway_models(result):
 
 
 def test_rest_to_rest_law(crane, result):
-    from cranefe.luffing.laws import rest_to_rest_law
+    from cranefe.analysis.luffing.laws import rest_to_rest_law
     excess = []
     for tau_c in (2.0, 1.0, 0.5):
         law = rest_to_rest_law(crane.proxy, crane.alpha0, crane.alphak, tau_c, 25.0)

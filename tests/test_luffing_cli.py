@@ -8,7 +8,7 @@ import textwrap
 
 import pytest
 
-from cranefe import archive
+from cranefe.outputs import archive
 from cranefe.cli import main
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

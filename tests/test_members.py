@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from cranefe.cases import matched
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 G = 9.81
 E, A, I, RHO = 2.1e11, 1.0e-2, 2.0e-4, 7850.0

@@ -6,11 +6,11 @@ import os
 import numpy as np
 import pytest
 
-from cranefe import archive
-from cranefe.assemble import assemble
+from cranefe.outputs import archive
+from cranefe.assembly.assemble import assemble
 from cranefe.cli import main
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TOWER = os.path.join(ROOT, "models", "hammerhead_tower_crane.yaml")

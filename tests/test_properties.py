@@ -15,7 +15,7 @@ from scipy.spatial.transform import Rotation
 
 from cranefe.errors import AnalysisError, ModelError
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "models")

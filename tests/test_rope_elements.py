@@ -6,10 +6,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cranefe.assemble import assemble
+from cranefe.assembly.assemble import assemble
 from cranefe.cases import G, hanging_chain, heavy_rope_end_mass, matched, tensioned_span
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 

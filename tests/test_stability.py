@@ -8,10 +8,10 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from cranefe.assemble import assemble
+from cranefe.assembly.assemble import assemble
 from cranefe.errors import ModelError
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 
 pytestmark = pytest.mark.stability
 mp.mp.dps = 50

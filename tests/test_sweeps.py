@@ -14,7 +14,7 @@ import pytest
 
 from cranefe.cli import main
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 from cranefe.sweeps.engine import run_sweep
 from cranefe.sweeps.spec import load_sweep
 from cranefe.sweeps.table import read_journal, read_table
@@ -210,7 +210,7 @@ def test_an_unchanged_structure_key_means_an_unchanged_dof_map(path):
     # give the same DofMap, else a sweep would reuse a stale one.
     import copy
     from dataclasses import replace
-    from cranefe.dofs import build_dofs, structure_key
+    from cranefe.coordinates.dofmap import build_dofs, structure_key
     from cranefe.model.load import build, read_raw
     from cranefe.errors import ModelError
     raw = read_raw(path)
@@ -263,8 +263,8 @@ def test_reuse_is_exact_and_finds_the_structure_once():
     # variants that differ in stiffness and masses: the same matrices with and without
     # reuse, one DofMap per effects and one static null space
     from dataclasses import replace
-    from cranefe.assemble import assemble
-    from cranefe.reuse import Reuse
+    from cranefe.assembly.assemble import assemble
+    from cranefe.assembly.reuse import Reuse
     base = load(os.path.join(ROOT, "models", "hammerhead_tower_crane.yaml"))
     base = base.with_effects(rope_mass=3)
     reuse = Reuse()
@@ -288,7 +288,7 @@ LUFF = os.path.join(ROOT, "models", "portal_crane_luffing_scene.yaml")
 def test_luffing_sweep_over_scene_keys(tmp_path):
     # parameters in the scene file; outputs equal the luffing analysis of each variant,
     # and the optimum's mean energy follows eq. 16, T = S^2 / (2 t_k^2)
-    from cranefe.luffing.analysis import analyse
+    from cranefe.analysis.luffing.analysis import analyse
     from cranefe.model.load import build, read_raw
     path = tmp_path / "l.yaml"
     path.write_text(f"""cranefe: 1
@@ -317,7 +317,7 @@ output: l.h5
 
 
 def test_figures_are_the_documented_ones():
-    from cranefe.luffing.analysis import FIGURES, analyse
+    from cranefe.analysis.luffing.analysis import FIGURES, analyse
     table = analyse(load(LUFF), collocation=False, sensitivity=False).table
     assert all(tuple(figs) == FIGURES for figs in table.values())
 

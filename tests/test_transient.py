@@ -7,7 +7,7 @@ import pytest
 
 from cranefe import cases
 from cranefe.model import load
-from cranefe.transient.integrate import simulate
+from cranefe.analysis.transient.integrate import simulate
 
 G = 9.81
 

@@ -57,7 +57,7 @@ def test_cli_json_csv_archive_xdmf_and_plots(tmp_path, capsys):
     assert doc["duration_s"] == 0.5 and doc["steps"] == 500
     assert doc["lift_off_time_s"] == pytest.approx(0.179869, rel=1e-5)
     assert doc["drums"]["hoist"]["drive"] == "speed"
-    from cranefe.archive import read
+    from cranefe.outputs.archive import read
     arc = read(out / "t.h5")
     res = arc.results["transient"]
     assert res.lift_off_time == doc["lift_off_time_s"]

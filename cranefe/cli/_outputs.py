@@ -34,18 +34,18 @@ def write_outputs(args, model, system, results, modal):
         from ..errors import ModelError
         raise ModelError("--animate needs --images DIR")
     if args.archive:
-        from .. import archive
+        from ..outputs import archive
         written.append(archive.write(args.archive, model, system, results,
                                      command=["cranefe"] + args.argv,
                                      timings=modal.timings))
     if args.vtu:
-        from ..paraview import write_vtu
+        from ..outputs.paraview import write_vtu
         written.append(write_vtu(args.vtu, model, system.dofs, modal))
     if args.xdmf:
-        from ..paraview import write_xdmf_modes
+        from ..outputs.paraview import write_xdmf_modes
         written.append(write_xdmf_modes(args.xdmf, model, system.dofs, modal))
     if args.images:
-        from ..render import render_modes
+        from ..outputs.render import render_modes
         written += render_modes(args.images, model, system.dofs, modal,
                                 size=_size(args.image_size), animate=args.animate)
     for path in written:

@@ -14,10 +14,10 @@ def add_arguments(p):
 def run(args):
     from dataclasses import replace
 
-    from ..assemble import assemble
+    from ..assembly.assemble import assemble
     from ..condense import DENSE_MAX, condense
     from ..model import load
-    from ..report import dumps
+    from ..outputs.report import dumps
     from ..statics import solve_static
     model = load(args.file)
     system = assemble(model)

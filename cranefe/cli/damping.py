@@ -25,7 +25,7 @@ def add_arguments(p):
 
 def scene_method(model):
     """The method a scene asks for: analysis.method, else effects.damping, else auto."""
-    from ..damping import METHODS
+    from ..analysis.damping import METHODS
     from ..errors import ModelError
     method = model.analysis.get("method")
     if method is not None:
@@ -39,11 +39,11 @@ def scene_method(model):
 def run(args):
     import time
 
-    from ..assemble import assemble
-    from ..damping import damping, first_modes, partner_modes
+    from ..assembly.assemble import assemble
+    from ..analysis.damping import damping, first_modes, partner_modes
     from ..errors import ModelError
     from ..model import load
-    from ..report import damping_modes_document, damping_modes_table, dumps
+    from ..outputs.report import damping_modes_document, damping_modes_table, dumps
     t0 = time.perf_counter()
     if args.count is not None and args.count < 1:
         raise ModelError(f"--count {args.count}: ask for at least one mode")

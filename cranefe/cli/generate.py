@@ -4,7 +4,7 @@ structure in mesh files)."""
 HELP = "generate a lattice tower-crane model of a chosen size"
 
 DESCRIPTION = """
-A pin-jointed lattice tower crane (cranefe.generate.tower_crane), all SI units.
+A pin-jointed lattice tower crane (cranefe.model.generate.tower_crane), all SI units.
 Mast: 2.0 m square, 2.5 m panels; chords L200x20 (A = 7.6e-3 m^2), braces L100x10
 (1.9e-3 m^2): four chords, a horizontal frame with a plan diagonal at every level and one
 diagonal per face and panel, so every panel is a braced box (stable as a truss). Ties to
@@ -34,7 +34,7 @@ def add_arguments(p):
 def run(args):
     import sys
 
-    from ..generate import panels_for, to_yaml, tower_crane, with_meshes
+    from ..model.generate import panels_for, to_yaml, tower_crane, with_meshes
     panels = panels_for(args.dofs) if args.dofs else args.panels
     model = tower_crane(panels=panels, tie_every=args.tie_every)
     if args.mesh:

@@ -18,10 +18,10 @@ def add_arguments(p):
 def run(args):
     import sys
 
-    from ..luffing.analysis import analyse
-    from ..luffing.report import luffing_document, luffing_table
+    from ..analysis.luffing.analysis import analyse
+    from ..analysis.luffing.report import luffing_document, luffing_table
     from ..model import load
-    from ..report import dumps
+    from ..outputs.report import dumps
     model = load(args.file)
     result = analyse(model, file=args.file, sensitivity=not args.no_sensitivity)
     if args.json:
@@ -30,12 +30,12 @@ def run(args):
         print(luffing_table(result))
     written = []
     if args.archive:
-        from .. import archive
+        from ..outputs import archive
         written.append(archive.write(args.archive, model, None, {"luffing": result},
                                      command=["cranefe"] + args.argv,
                                      timings=result.timings))
     if args.plots:
-        from ..luffing.plots import write_plots
+        from ..analysis.luffing.plots import write_plots
         written += write_plots(result, args.plots)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)

@@ -15,10 +15,10 @@ def add_arguments(p):
 
 
 def run(args):
-    from ..assemble import assemble
+    from ..assembly.assemble import assemble
     from ..model import load
-    from ..modal import drive_reduction, modes
-    from ..report import dumps, modes_document, modes_table
+    from ..analysis.modal import drive_reduction, modes
+    from ..outputs.report import dumps, modes_document, modes_table
     import time
     t0 = time.perf_counter()
     model = load(args.file)
@@ -31,7 +31,7 @@ def run(args):
     comparison = drive_reduction(model, result) if model.effects.drive == "reduced" else None
     results = {"modes": result}
     if model.effects.damping != "none":        # a scene asking for damping gets it too
-        from ..damping import damping, partner_modes
+        from ..analysis.damping import damping, partner_modes
         # with the coupling partners beyond the modes shown, as `cranefe damping`
         modal, shown = partner_modes(model, system, len(result.omega))
         results["damping"] = damping(model, model.effects.damping, shown, system=system,
@@ -39,7 +39,7 @@ def run(args):
     if args.json:
         doc = modes_document(result, comparison)
         if "damping" in results:
-            from ..report import damping_document
+            from ..outputs.report import damping_document
             doc["damping"] = damping_document(results["damping"])["modes"]
             doc["warnings"] += [w for w in results["damping"].warnings
                                 if w not in doc["warnings"]]
@@ -47,7 +47,7 @@ def run(args):
     else:
         print(modes_table(result, comparison))
         if "damping" in results:
-            from ..report import damping_table
+            from ..outputs.report import damping_table
             print(damping_table(results["damping"]))
     write_outputs(args, model, system, results, result)
     return 0

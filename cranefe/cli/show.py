@@ -9,8 +9,8 @@ def add_arguments(p):
 
 
 def run(args):
-    from ..archive import read
-    from ..report import dumps, modes_document, modes_table
+    from ..outputs.archive import read
+    from ..outputs.report import dumps, modes_document, modes_table
     from ..sweeps.table import is_sweep
     if is_sweep(args.file):
         return _show_sweep(args)
@@ -42,7 +42,7 @@ def run(args):
 def _show_sweep(args):
     import numpy as np
 
-    from ..report import dumps
+    from ..outputs.report import dumps
     from ..sweeps.table import read_table
     t = read_table(args.file)
     ok = np.array([s == "ok" for s in t.status], dtype=bool)

@@ -52,9 +52,9 @@ class _Progress:
 
 def run(args):
     from ..model import load
-    from ..report import dumps
-    from ..transient.integrate import simulate
-    from ..transient.output import document, table
+    from ..outputs.report import dumps
+    from ..analysis.transient.integrate import simulate
+    from ..analysis.transient.output import document, table
     model = load(args.file)
     progress = _Progress()
     try:
@@ -64,24 +64,24 @@ def run(args):
     print(dumps(document(result)) if args.json else table(result))
     written = []
     if args.csv:
-        from ..transient.output import write_csv
+        from ..analysis.transient.output import write_csv
         written.append(write_csv(args.csv, result))
     if args.archive or args.xdmf:
-        from ..assemble import assemble
+        from ..assembly.assemble import assemble
         system = assemble(model)
         if args.archive:
-            from .. import archive
+            from ..outputs import archive
             written.append(archive.write(args.archive, model, system, {"transient": result},
                                          command=["cranefe"] + args.argv,
                                          timings=result.timings))
         if args.xdmf:
-            from ..mesh import point_displacements
-            from ..paraview import write_xdmf_series
+            from ..outputs.mesh import point_displacements
+            from ..outputs.paraview import write_xdmf_series
             disp = point_displacements(system.dofs, result.q.T)
             written.append(write_xdmf_series(args.xdmf, model, system.dofs, result.times,
                                              {"displacement": disp}))
     if args.plots:
-        from ..transient.output import plot
+        from ..analysis.transient.output import plot
         written += plot(args.plots, result)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)

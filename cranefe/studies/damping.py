@@ -26,8 +26,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..assemble import assemble
-from ..damping import (exact_hysteretic, exact_viscous, modal_damping, partner_modes)
+from ..assembly.assemble import assemble
+from ..analysis.damping import (exact_hysteretic, exact_viscous, modal_damping, partner_modes)
 from ..model import load
 from ._common import pyplot, save, write_csv
 
@@ -146,7 +146,7 @@ def run(outdir, quick=False):
 
 
 def _plot(rows, outdir):
-    from ..damping import ERROR_TOL, KAPPA
+    from ..analysis.damping import ERROR_TOL, KAPPA
     plt = pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.6))
     styles = {"hoist_chain": "o", "tower_crane": "s"}

@@ -7,7 +7,7 @@ import numpy as np
 
 from ..cases import two_mass_hoist
 from ..model import load
-from ..modal import drive_reduction, modes
+from ..analysis.modal import drive_reduction, modes
 from ._common import pyplot, save, write_csv
 
 DESCRIPTION = "drive: reduced vs coupled: frequency error vs drive inertia, and its cost"

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..cases import spring_chain
 from ..model import load
-from ..modal import modes
+from ..analysis.modal import modes
 from ._common import pyplot, save, write_csv
 
 DESCRIPTION = "dense vs sparse eigensolvers: error and time vs size"

@@ -31,8 +31,8 @@ def _best_time(run, repeat):
 
 def measure(quick=False, scene=SCENE):
     """Rows of (method, parameter, error, time) and the analysis' objects."""
-    from ..luffing.analysis import Luffing, read_scene
-    from ..luffing.optimum import (GRID, bvp, chebyshev_points, collocation,
+    from ..analysis.luffing.analysis import Luffing, read_scene
+    from ..analysis.luffing.optimum import (GRID, bvp, chebyshev_points, collocation,
                                    equally_spaced, law_error, paper_collocation,
                                    quadrature_law)
     from ..model import load
@@ -128,8 +128,8 @@ def run(outdir, quick=False):
     ax.legend(fontsize=8)
     paths.append(save(fig, outdir, "luffing_cost.png"))
     if not quick:
-        from ..luffing.analysis import analyse
-        from ..luffing.plots import write_plots
+        from ..analysis.luffing.analysis import analyse
+        from ..analysis.luffing.plots import write_plots
         from ..model import load
         result = analyse(load(SCENE), file=SCENE)
         keys = ["T_mean_J", "T_ratio", "peak_motor_torque_Nm", "peak_power_W",

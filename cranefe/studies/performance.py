@@ -44,7 +44,7 @@ def _opensees_available():
 
 
 def run(outdir, quick=False):
-    from ..generate import panels_for, to_yaml, tower_crane, with_meshes
+    from ..model.generate import panels_for, to_yaml, tower_crane, with_meshes
     sizes = (1000, 3000) if quick else (1000, 10000, 100000)
     have_ops = _opensees_available()
     rows = []

@@ -41,10 +41,10 @@ def run(outdir, quick=False):
                        os.path.join(tmp, f"i{n}")], repeat)
             rows.append((f"modes + {n} images (whole process)", t, n))
         # in one process: the first image pays the back-end probe and the pyvista import
-        from ..assemble import assemble
+        from ..assembly.assemble import assemble
         from ..model import load
-        from ..modal import modes
-        from ..render import render_modes
+        from ..analysis.modal import modes
+        from ..outputs.render import render_modes
         m = load(scene)
         s = assemble(m)
         r = modes(m, count=8, system=s)

@@ -7,7 +7,7 @@ import numpy as np
 
 from ..cases import ROPE_CASES, matched
 from ..model import load
-from ..modal import modes
+from ..analysis.modal import modes
 from ._common import pyplot, save, write_csv
 
 DESCRIPTION = "rope elements per fall (N): error vs exact solutions and time"

@@ -1,5 +1,5 @@
 """Sweep throughput: variants per second of a realistic crane, serial and parallel, and
-what reusing the structure's work (cranefe.reuse) saves per variant."""
+what reusing the structure's work (cranefe.assembly.reuse) saves per variant."""
 
 import os
 import tempfile
@@ -78,10 +78,10 @@ def _stages(crane, base, n):
     COO -> CSR conversions inside the assembly, over n variants of the rope EA."""
     from dataclasses import replace
 
-    from .. import assemble as A
+    from ..assembly import assemble as A
     from ..model import load
-    from ..modal import modes
-    from ..reuse import Reuse
+    from ..analysis.modal import modes
+    from ..assembly.reuse import Reuse
     model = load(base)
     variants = [replace(model, ropes=tuple(replace(r, EA=r.EA * (1 + 0.01 * k))
                                            for r in model.ropes)) for k in range(n)]

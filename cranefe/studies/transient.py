@@ -54,7 +54,7 @@ def _scene(folder, name, model, effects, analysis):
 
 
 def _timed(model, repeat=1):
-    from ..transient.integrate import simulate
+    from ..analysis.transient.integrate import simulate
     best, r = np.inf, None
     for _ in range(repeat):
         t0 = time.perf_counter()
@@ -66,10 +66,10 @@ def _timed(model, repeat=1):
 def exact_peak(model, duration):
     """Peak rope force of a step-loaded, modally damped scene from the closed-form
     responses of all its principal coordinates (module docstring)."""
-    from ..damping import modal_damping_ratios
-    from ..modal import modes
-    from ..transient.problem import Problem
-    from ..transient.scene import parse
+    from ..analysis.damping import modal_damping_ratios
+    from ..analysis.modal import modes
+    from ..analysis.transient.problem import Problem
+    from ..analysis.transient.scene import parse
     p = Problem(model, parse(model))
     if p.prescribed and any(np.any(pr.values) for pr in p.prescribed.values()):
         raise ValueError("exact_peak takes drum torques, not prescribed speeds")
@@ -160,7 +160,7 @@ def run(outdir, quick=False):
 
 def _falls(model, hook):
     """Drum radius over hook falls: hook speed per drum speed (from the rope row)."""
-    from ..assemble import assemble
+    from ..assembly.assemble import assemble
     s = assemble(model)
     d = s.dofs
     R = s.springs.R @ d.T

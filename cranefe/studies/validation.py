@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import cases
 from ..model import load
-from ..modal import drive_reduction, modes
+from ..analysis.modal import drive_reduction, modes
 from ._common import write_csv
 
 DESCRIPTION = "the table of validation cases and their measured errors"
@@ -126,7 +126,7 @@ def structure_cases():
 
 
 def peer_cases(quick):
-    from ..generate import panels_for, to_yaml, tower_crane
+    from ..model.generate import panels_for, to_yaml, tower_crane
     import json
     import tempfile
     with tempfile.TemporaryDirectory() as tmp:

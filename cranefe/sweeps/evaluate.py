@@ -2,7 +2,7 @@
 
 Each analysis runs only if an output asks for it (modes, damping, a transient, the
 luffing laws named in the outputs). Work that depends only on the model's structure is
-reused across the variants a process runs (`cranefe.reuse.Reuse`: DOF maps and the
+reused across the variants a process runs (`cranefe.assembly.reuse.Reuse`: DOF maps and the
 static null space); `cranefe study sweeps` measures the gain.
 """
 
@@ -11,7 +11,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..reuse import Reuse
+from ..assembly.reuse import Reuse
 
 REUSE = Reuse()          # one per process: a worker keeps it across its chunks
 
@@ -24,12 +24,12 @@ class Variant:
 
     @cached_property
     def system(self):
-        from ..assemble import assemble
+        from ..assembly.assemble import assemble
         return assemble(self.model, reuse=self.reuse)
 
     @cached_property
     def modal(self):
-        from ..modal import modes
+        from ..analysis.modal import modes
         return modes(self.model, count=min(self.count + 6, self.system.K.shape[0]),
                      system=self.system)
 
@@ -39,17 +39,17 @@ class Variant:
 
     @cached_property
     def damping(self):
-        from ..damping import modal_damping_ratios
+        from ..analysis.damping import modal_damping_ratios
         return modal_damping_ratios(self.system, self.modal)[~self.modal.rigid]
 
     @cached_property
     def transient(self):
-        from ..transient.integrate import simulate
+        from ..analysis.transient.integrate import simulate
         return simulate(self.model, reuse=self.reuse)
 
     @cached_property
     def luffing(self):
-        from ..luffing.analysis import law_figures
+        from ..analysis.luffing.analysis import law_figures
         laws = {o.split(".")[1] for o in self.outputs if o.startswith("luffing.")}
         return law_figures(self.model, sorted(laws))
 

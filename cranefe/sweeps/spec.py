@@ -95,7 +95,7 @@ def _output(o, entry, raw, r):
                f"'analysis: {{type: {NEEDS[kind]}, ...}}'); the base is "
                + (f"a {analysis.get('type', 'modes')} scene" if raw[3] else "a model file"))
     if kind == "luffing":
-        from ..luffing.analysis import ALL_LAWS, FIGURES
+        from ..analysis.luffing.analysis import ALL_LAWS, FIGURES
         law, _, figure = arg.partition(".")
         if law not in ALL_LAWS:
             r.fail(entry, f"unknown law {law!r}; the laws are {', '.join(ALL_LAWS)}")

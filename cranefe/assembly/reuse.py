@@ -2,7 +2,7 @@
 (the variants of a sweep). Nothing is kept unless a `Reuse` is passed to `assemble`.
 
 - DOF maps (coordinates, constraints, the transform u = T q, rope and member meshes),
-  under `cranefe.dofs.structure_key` of the model and the effects;
+  under `cranefe.coordinates.dofmap.structure_key` of the model and the effects;
 - null spaces of pattern matrices (the sum of unit-scaled element matrices, which has the
   null space of K without its stiffness contrasts), under a digest of the matrix itself:
   the static solution's pattern depends only on geometry and on which elements exist, so
@@ -44,13 +44,13 @@ class Reuse:
 
     def dofs(self, model, effects):
         """`build_dofs(model, effects)`, built once per structure."""
-        from .dofs import build_dofs, structure_key
+        from ..coordinates.dofmap import build_dofs, structure_key
         return self._get("dofs", structure_key(model, effects),
                          lambda: build_dofs(model, effects))
 
     def null_space(self, P):
         """`condense.null_space` of the sparse pattern matrix P, found once per matrix."""
-        from .condense import null_space
+        from ..condense import null_space
         P = P.tocsr()
         P.sort_indices()
         h = hashlib.sha1(repr(P.shape).encode())

@@ -39,7 +39,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .errors import AnalysisError, ModelError
+from ..errors import AnalysisError, ModelError
 
 METHODS = ("modal", "exact", "both", "auto")
 KAPPA = 0.1          # Hasselman's criterion: every coupling coefficient below this
@@ -86,7 +86,7 @@ def _weighted_stiffness(system, row_weight, beam_weight):
     s = system.springs
     K = s.R.T @ sp.diags(s.c * row_weight) @ s.R
     if system.beams is not None:
-        from .assemble import Blocks, sum_blocks
+        from ..assembly.assemble import Blocks, sum_blocks
         b = system.beams
         w = np.broadcast_to(beam_weight, (len(b.mat),))
         K = K + sum_blocks([Blocks(b.idx, b.mat * w[:, None, None])], K.shape[0])
@@ -570,7 +570,7 @@ def damping(model, method="auto", count=None, system=None, modal=None):
     system, modal : an assembled System and its ModalResult, if already at hand (then
         the first `count` of its modes are reported, all if None).
     """
-    from .assemble import assemble
+    from ..assembly.assemble import assemble
     _check_method(method, count)
     t0 = time.perf_counter()
     system = system or assemble(model)
@@ -657,7 +657,7 @@ def partner_modes(model, system, count=None):
     all modes on the dense path, doubling the count on the sparse one. Reported:
     `count`, else what `cranefe modes` reports (all modes of a dense model, else 10).
     """
-    from .condense import DENSE_MAX as MODAL_DENSE_MAX
+    from ..condense import DENSE_MAX as MODAL_DENSE_MAX
     from .modal import SMALL, modes
     n = system.K.shape[0]
     if n <= SMALL or (count is None and n <= MODAL_DENSE_MAX):

@@ -15,9 +15,9 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .assemble import assemble
-from .condense import DENSE_MAX, condense, massless_split, no_inertia
-from .errors import AnalysisError
+from ..assembly.assemble import assemble
+from ..condense import DENSE_MAX, condense, massless_split, no_inertia
+from ..errors import AnalysisError
 
 SMALL = 300        # below this many coordinates the dense solution is the fastest
 

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..model import GROUND
+from ...model import GROUND
 
 QUANTITIES = ("J", "dJ", "Jp", "dJp", "V", "dV", "s", "ds", "dds",
               "x", "dx", "ddx", "z", "dz", "ddz")

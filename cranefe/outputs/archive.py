@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import __version__
-from .errors import ModelError
+from .. import __version__
+from ..errors import ModelError
 
 FORMAT = "cranefe-archive"
 FORMAT_VERSION = 1
@@ -30,7 +30,7 @@ class Archive:
     path: str
     meta: dict
     model: dict               # name, file, planar, yaml, node_names, coords, ground, ...
-    mesh: object              # cranefe.mesh.LineMesh
+    mesh: object              # cranefe.outputs.mesh.LineMesh
     effects: dict
     labels: tuple
     K: object = None          # scipy.sparse.csr_matrix
@@ -40,13 +40,13 @@ class Archive:
 
 
 def _result_classes():
-    from .modal import ModalResult
+    from ..analysis.modal import ModalResult
     classes = {"ModalResult": ModalResult}
-    from .damping import DampingResult
-    from .transient.results import TransientResult
+    from ..analysis.damping import DampingResult
+    from ..analysis.transient.results import TransientResult
     classes["DampingResult"] = DampingResult
     classes["TransientResult"] = TransientResult
-    from .luffing.analysis import LuffingResult
+    from ..analysis.luffing.analysis import LuffingResult
     classes["LuffingResult"] = LuffingResult
     return classes
 

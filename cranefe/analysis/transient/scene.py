@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ModelError
-from ..model.load import _Reader
+from ...errors import ModelError
+from ...model.load import _Reader
 
 KEYS = {"type", "duration", "time_step", "max_steps", "method", "modes",
         "static_correction", "initial", "grounded", "output_step", "drums", "forces"}

@@ -13,11 +13,11 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
-from .dofs import build_dofs
-from .elements import (elongation_rows, load_stiffness, rigid_mass, rope_mass, skew,
+from ..coordinates.dofmap import build_dofs
+from ..elements.kernels import (elongation_rows, load_stiffness, rigid_mass, rope_mass, skew,
                        span_geometry, string_stiffness)
-from .errors import ModelError
-from .model import GROUND
+from ..errors import ModelError
+from ..model import GROUND
 
 
 @dataclass(frozen=True)
@@ -149,7 +149,7 @@ def spring_rows(model, layout, ropes_fe=None, members=None):
     lengths = list(L)
     rope_of = list(massless)
     if fe:
-        from .ropes import element_materials, endpoint_maps
+        from ..coordinates.ropes import element_materials, endpoint_maps
         rm = ropes_fe
         dofs, B = endpoint_maps(rm, layout)
         EA, _ = element_materials(model, rm)
@@ -167,7 +167,7 @@ def spring_rows(model, layout, ropes_fe=None, members=None):
     member_of = []
     mm = members
     if mm is not None and (~mm.beam).any():    # trusses: one row each, EA / l
-        from .members import element_sections
+        from ..coordinates.members import element_sections
         sec = element_sections(model, mm)
         t = np.flatnonzero(~mm.beam)
         e, l = _member_geometry(model, layout, mm, t)
@@ -221,8 +221,8 @@ def beam_dofs(layout, mm, which):
 
 def beam_blocks(model, layout, mm):
     """Elastic stiffness of the beam elements in global axes, and their absorption."""
-    from .elements import beam_axes, beam_stiffness, to_global
-    from .members import element_sections
+    from ..elements.kernels import beam_axes, beam_stiffness, to_global
+    from ..coordinates.members import element_sections
     sec = element_sections(model, mm)
     b = np.flatnonzero(mm.beam)
     e, l = _member_geometry(model, layout, mm, b)
@@ -287,7 +287,7 @@ def mass_and_gravity(model, dofs, effects):
             f[layout.node([i])[0]] += m * model.gravity
 
     for mem in (model.members if dofs.members is None else ()):   # structure: rigid
-        from .members import member_pairs
+        from ..coordinates.members import member_pairs
         pairs = member_pairs(mem)
         a, b = pairs[:, 0], pairs[:, 1]
         e, l = span_geometry(model.coords, a, b)
@@ -319,7 +319,7 @@ def mass_and_gravity(model, dofs, effects):
 
     rm = dofs.ropes
     if rm is not None:          # rope elements: B^T M6 B on their end maps
-        from .ropes import element_materials, endpoint_maps
+        from ..coordinates.ropes import element_materials, endpoint_maps
         idx, B = endpoint_maps(rm, layout)
         _, mu = element_materials(model, rm)
         M6 = rope_mass(mu, rm.length, lumped=effects.rope_mass_matrix == "lumped")
@@ -332,8 +332,8 @@ def mass_and_gravity(model, dofs, effects):
 
     mm = dofs.members
     if mm is not None:          # flexible members: truss and beam element masses
-        from .elements import beam_axes, beam_mass, to_global
-        from .members import element_sections
+        from ..elements.kernels import beam_axes, beam_mass, to_global
+        from ..coordinates.members import element_sections
         sec = element_sections(model, mm)
         t, b = np.flatnonzero(~mm.beam), np.flatnonzero(mm.beam)
         g12 = np.concatenate([model.gravity, np.zeros(3), model.gravity, np.zeros(3)])
@@ -386,7 +386,7 @@ def geometric_stiffness(model, dofs, static):
                           string_stiffness(N, falls, e, l)))
     mm = dofs.members
     if mm is not None and mm.beam.any():
-        from .elements import beam_axes, beam_geometric, to_global
+        from ..elements.kernels import beam_axes, beam_geometric, to_global
         bi = np.flatnonzero(mm.beam)
         e, l = span_geometry(dofs.coords, mm.node[bi, 0], mm.node[bi, 1])
         out.append(Blocks(beam_dofs(layout, mm, bi),
@@ -434,7 +434,7 @@ def elastic_stiffness(model, dofs, effects=None):
 def assemble(model, effects=None, reuse=None):
     """Assemble K, M, f for `model` with `effects` (default: the model's own).
 
-    `reuse`: a `cranefe.reuse.Reuse` holding work of earlier models of the same
+    `reuse`: a `cranefe.assembly.reuse.Reuse` holding work of earlier models of the same
     structure (the DOF maps, the static null space), as a sweep's variants share it."""
     import time
     t0 = time.perf_counter()
@@ -444,7 +444,7 @@ def assemble(model, effects=None, reuse=None):
     M_u, f_u, _ = mass_and_gravity(model, dofs, effects)
     static, geometric = None, ()
     if effects.sway:
-        from .statics import solve_static
+        from ..statics import solve_static
         static = solve_static(model, effects, reuse)
         geometric = geometric_stiffness(model, dofs, static)
         K_u = K_u + sum_blocks(geometric, dofs.layout.size)

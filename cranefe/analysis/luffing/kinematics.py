@@ -25,8 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import AnalysisError, ModelError
-from ..model import GROUND
+from ...errors import AnalysisError, ModelError
+from ...model import GROUND
 
 
 def _xz(v):

@@ -3,7 +3,7 @@
 Solvers by name: ``METHODS = {"direct": ..., "modal": ...}`` build the equations the
 time stepper (`newmark.Stepper`) integrates: the model's generalised coordinates with
 tension-only ropes and ground contact (direct), or the retained principal coordinates
-(modal, `cranefe.transient.modal`).
+(modal, `cranefe.analysis.transient.modal`).
 """
 
 import time
@@ -48,7 +48,7 @@ def simulate(model, progress=None, reuse=None):
     """Integrate the transient scene of `model` -> `TransientResult`.
 
     progress : callable (t, duration) or None, called after each step.
-    reuse : `cranefe.reuse.Reuse` of earlier models of the same structure (sweeps).
+    reuse : `cranefe.assembly.reuse.Reuse` of earlier models of the same structure (sweeps).
     """
     t0 = time.perf_counter()
     spec = parse(model)

@@ -23,9 +23,9 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..assemble import assemble
-from ..condense import massless_split
-from ..errors import ModelError
+from ...assembly.assemble import assemble
+from ...condense import massless_split
+from ...errors import ModelError
 from .equations import Equations, MotorLoad, Signal
 from .scene import Profile
 
@@ -83,8 +83,8 @@ class Problem:
 
     def __init__(self, model, spec, damping=True, reuse=None):
         """damping=False leaves the viscous matrix out (modal superposition damps its
-        principal coordinates itself); reuse: a `cranefe.reuse.Reuse` (sweeps)."""
-        from ..statics import solve_static
+        principal coordinates itself); reuse: a `cranefe.assembly.reuse.Reuse` (sweeps)."""
+        from ...statics import solve_static
         self.model, self.spec = model, spec
         file = model.scene_file or model.file
         eff = model.effects

@@ -1,8 +1,8 @@
 """Pure, batched element kernels: geometry and element data in, local rows/blocks out.
 
 No global state, no I/O. Degrees of freedom are *primitive* indices (see
-`cranefe.dofs.Layout`): three translations per node, six per body (at its centre of
-mass), one rotation per drum. Assembly (`cranefe.assemble`) maps them to the
+`cranefe.coordinates.dofmap.Layout`): three translations per node, six per body (at its centre of
+mass), one rotation per drum. Assembly (`cranefe.assembly.assemble`) maps them to the
 generalised coordinates with one sparse transform.
 """
 

@@ -127,7 +127,7 @@ def damping_modes_document(result):
     ``coupling`` (largest coefficient, ``coupled_with`` that mode), ``weak_coupling``,
     ``predicted_error``, and where solved ``exact`` (viscous) and ``hysteretic``
     (complex stiffness) objects with their relative error."""
-    from .damping import ERROR_TOL, KAPPA
+    from ..analysis.damping import ERROR_TOL, KAPPA
     err_v, err_h = result.error_viscous, result.error_hysteretic
     dec_v, dec_h = result.exact_log_decrement, result.hysteretic_log_decrement
     modes = []
@@ -171,7 +171,7 @@ def damping_modes_document(result):
 def damping_modes_table(result):
     """The table of ``cranefe damping``: per mode the decoupled estimate, the coupling
     figure and, where solved, the exact ratios and the estimate's error against them."""
-    from .damping import KAPPA
+    from ..analysis.damping import KAPPA
     exact = result.exact_zeta is not None
     eff = ", ".join(f"{k} {_fmt_effect(v)}" for k, v in result.effects.items())
     lines = [f"{result.model_name}: {result.dofs} coordinates ({eff})",

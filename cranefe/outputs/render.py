@@ -13,7 +13,7 @@ import sys
 
 import numpy as np
 
-from .errors import AnalysisError
+from ..errors import AnalysisError
 from .mesh import KINDS, line_mesh, point_displacements
 
 _PROBE = ("import pyvista as pv\n"

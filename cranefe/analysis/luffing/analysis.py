@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ModelError
+from ...errors import ModelError
 
 KEYS = {"type", "boom", "pivot", "tip", "alpha0_deg", "alphak_deg", "alpha0", "alphak",
         "reach0", "reachk", "t_k", "drive", "jib_tip", "load", "inertia",
@@ -46,7 +46,7 @@ class Scene:
 
 def read_scene(model, file=None):
     """Validate ``model.analysis`` (the loader leaves a luffing analysis unchecked)."""
-    from ..model.load import _Reader
+    from ...model.load import _Reader
     file = file or model.file
     r = _Reader(file)
     a = model.analysis or {}
@@ -177,7 +177,7 @@ class Luffing:
             raise ModelError("the start and end of the luffing coincide", file, "analysis")
         lo, hi = sorted((self.alpha0, self.alphak))
         margin = 0.05 * (hi - lo)
-        from ..errors import AnalysisError
+        from ...errors import AnalysisError
         for value, end in ((self.alpha0, scene.start), (self.alphak, scene.end)):
             try:
                 self.linkage.cover(value, value)
@@ -201,7 +201,7 @@ class Luffing:
         kind, value, key = end
         if kind == "alpha":
             return value
-        from ..errors import AnalysisError
+        from ...errors import AnalysisError
         lk, red = self.linkage, self.reduced
         chunk = np.radians(10.0)
         for direction in (1, -1):

@@ -9,7 +9,7 @@ is condensed as in `cranefe.condense`: massless coordinates statically, quasi-cy
     eta_i'' + 2 zeta_i w_i eta_i' + w_i^2 eta_i = (P Y_i)^T F = Y_i^T F1'
 
 (the elastic shapes P Y_i are M-orthogonal to the rigid motions, so projecting F on them
-is eq. 8), with the decoupled damping ratios zeta_i of `cranefe.damping` (eq. 16). The
+is eq. 8), with the decoupled damping ratios zeta_i of `cranefe.analysis.damping` (eq. 16). The
 quasi-cyclic coordinates keep their rigid motion: with the mass-normalised rigid shapes
 Phi_r, ``z'' = Phi_r^T F`` (eq. 5 of the seed solved for Y2''), and are recovered in
 ``q = Phi_r z + P Y eta``. A prescribed drum is a known angle theta(t): the free
@@ -26,7 +26,7 @@ from dataclasses import replace
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from ..condense import DENSE_MAX, choose_quasi_cyclic, massless_split
+from ...condense import DENSE_MAX, choose_quasi_cyclic, massless_split
 from .equations import Equations, MotorLoad, Signal
 
 

@@ -52,7 +52,7 @@ def line_mesh(model, dofs=None):
         for (a, b), k in zip(mm.node, mm.member):
             add(int(a), int(b), "member", f"member {model.members[k].name}")
     else:
-        from .members import member_pairs
+        from ..coordinates.members import member_pairs
         for m in model.members:
             for a, b in member_pairs(m):
                 add(int(a), int(b), "member", f"member {m.name}")

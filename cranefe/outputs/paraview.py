@@ -8,7 +8,7 @@ import tempfile
 
 import numpy as np
 
-from .errors import ModelError
+from ..errors import ModelError
 from .mesh import KINDS, line_mesh, point_displacements
 
 

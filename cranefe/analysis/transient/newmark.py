@@ -20,7 +20,7 @@ the equations (right-hand limits).
 
 import numpy as np
 
-from ..errors import AnalysisError
+from ...errors import AnalysisError
 from .equations import Factor
 
 EVENT_TOL = 1e-9       # event functions, relative to their force / length scale

@@ -24,9 +24,9 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 
-from .elements import elongation_rows, skew, span_geometry
-from .errors import ModelError
-from .model import GROUND
+from ..elements.kernels import elongation_rows, skew, span_geometry
+from ..errors import ModelError
+from ..model import GROUND
 
 PLANAR_COMPONENTS = (0, 2, 4)       # ux, uz, ry of (ux, uy, uz, rx, ry, rz)
 AXES = ("x", "y", "z")
@@ -93,8 +93,8 @@ class DofMap:
     carrier: np.ndarray       # (nn,) group carrying each node, GROUND, or -2 = own DOFs
     constraints: tuple        # ConstraintRows used in T_c
     coords: np.ndarray        # (nn, 3) model nodes, interior rope nodes, member nodes
-    ropes: object = None      # cranefe.ropes.RopeMesh when rope mass is on
-    members: object = None    # cranefe.members.MemberMesh when the structure is flexible
+    ropes: object = None      # cranefe.coordinates.ropes.RopeMesh when rope mass is on
+    members: object = None    # cranefe.coordinates.members.MemberMesh when the structure is flexible
 
     @property
     def n(self):
@@ -462,11 +462,11 @@ def _constraint_rows(model, effects, layout, T_map, group_of_body, group_q, grou
                                   (row @ T_map)[None], (), None, np.zeros((1, 3))))
     if not effects.rope_elasticity:
         if effects.rope_mass > 0:
-            from .errors import ModelError
+            from ..errors import ModelError
             raise ModelError("inextensible ropes (rope_elasticity: false) cannot carry "
                              "rope mass elements; set rope_mass: 0", model.file,
                              "effects.rope_elasticity")
-        from .assemble import rope_rows
+        from ..assembly.assemble import rope_rows
         R, _ = rope_rows(model, layout)
         RT = (R @ T_map).toarray()
         for k, r in enumerate(model.ropes):
