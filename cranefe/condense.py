@@ -15,30 +15,11 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
+from .assembly import null_space
+from .coordinates import entry_of
 from .errors import ModelError
 
 DENSE_MAX = 1500       # up to this many coordinates the dense eigen-solution is used
-STATIC_DENSE_MAX = 400  # up to this many, statics finds its null space densely
-NULL_TOL = 1e-10       # relative eigenvalue of the unit-scaled pattern matrix
-
-
-def null_space(P, tol=NULL_TOL):
-    """Null space (n, k) of a PSD 'pattern' matrix (sum of unit-scaled element matrices).
-
-    The pattern has the null space of K but none of its stiffness contrasts; Jacobi
-    scaling removes the contrast between rotations and translations. Columns are
-    orthonormal in the scaled metric, mapped back and normalised to unit max-norm.
-    """
-    d = np.diag(P).copy()
-    untouched = d <= 0
-    s = 1 / np.sqrt(np.where(untouched, 1.0, d))
-    S = s[:, None] * P * s[None, :]
-    w, v = np.linalg.eigh(S)
-    top = max(w[-1], 1.0) if len(w) else 1.0
-    N = s[:, None] * v[:, w < tol * top]
-    if N.shape[1]:
-        N = N / np.abs(N).max(axis=0)
-    return N
 
 
 @dataclass(frozen=True)
@@ -77,7 +58,6 @@ def check_mechanisms(N, M, labels, model):
         v = N @ z[:, np.argmax(bad)]
         top = np.argsort(-np.abs(v))
         names = [labels[i] for i in top[:4] if abs(v[i]) > 0.05 * abs(v).max()]
-        from .statics import entry_of
         raise ModelError(
             f"massless and unrestrained: {', '.join(names)} can move with no stiffness and "
             "no inertia; attach a rope or spring in that direction, give it mass, or add it "

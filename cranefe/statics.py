@@ -12,13 +12,14 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .assembly.assemble import elastic_stiffness, mass_and_gravity, pattern
-from .condense import STATIC_DENSE_MAX, null_space
-from .coordinates.dofmap import build_dofs
-from .elements.kernels import span_geometry
+from .assembly import elastic_stiffness, mass_and_gravity, null_space, pattern
+from .assembly.materials import element_sections
+from .coordinates import build_dofs, entry_of
+from .elements import span_geometry
 from .errors import AnalysisError, ModelError
-from .coordinates.members import element_sections
 from .model import GROUND
+
+STATIC_DENSE_MAX = 400  # up to this many coordinates, statics finds its null space densely
 
 
 @dataclass(frozen=True)
@@ -192,14 +193,6 @@ def _solve(K, f, P, dofs, model, reuse=None):
         alpha = np.abs(np.diag(Kd)).max() or 1.0
         Kd = Kd + alpha * N @ N.T
     return sla.solve(Kd, f, assume_a="sym")
-
-
-def entry_of(label):
-    """The model entry a coordinate label belongs to: 'node B z' -> 'nodes.B'."""
-    kind, _, rest = label.partition(" ")
-    name = rest.split(" ")[0]
-    return {"node": f"nodes.{name}", "body": f"bodies.{name.split('+')[0]}",
-            "drum": f"drums.{name}"}.get(kind)
 
 
 def _check_free_nodes(model, dofs, node_force, weight_force, scale):

@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cranefe.assembly.assemble import assemble
+from cranefe.system import assemble
 from cranefe.cli import main
 from cranefe.condense import condense
 from cranefe.analysis.modal import drive_reduction, modes

@@ -124,7 +124,7 @@ def test_chains_with_damping_on_one_element_match_state_space(ks, ms, psis):
 def test_modal_damping_matrix_and_equivalent_viscous_rows():
     ks, ms, psis = [3.0e4, 1.0e4, 2.0e4], [80.0, 40.0, 60.0], [0.1, 0.8, 0.3]
     model = chain(ks, ms, psis)
-    from cranefe.assembly.assemble import assemble
+    from cranefe.system import assemble
     system = assemble(model)
     K, M, P = chain_matrices(ks, ms, psis)
     np.testing.assert_allclose(psi_stiffness(system).toarray(), P, rtol=1e-14)

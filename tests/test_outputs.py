@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from cranefe.outputs import archive
-from cranefe.assembly.assemble import assemble
+from cranefe.system import assemble
 from cranefe.cli import main
 from cranefe.model import load
 from cranefe.analysis.modal import modes

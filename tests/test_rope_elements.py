@@ -6,7 +6,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cranefe.assembly.assemble import assemble
+from cranefe.system import assemble
 from cranefe.cases import G, hanging_chain, heavy_rope_end_mass, matched, tensioned_span
 from cranefe.model import load
 from cranefe.analysis.modal import modes

@@ -8,7 +8,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from cranefe.assembly.assemble import assemble
+from cranefe.system import assemble
 from cranefe.errors import ModelError
 from cranefe.model import load
 from cranefe.analysis.modal import modes

@@ -263,7 +263,7 @@ def test_reuse_is_exact_and_finds_the_structure_once():
     # variants that differ in stiffness and masses: the same matrices with and without
     # reuse, one DofMap per effects and one static null space
     from dataclasses import replace
-    from cranefe.assembly.assemble import assemble
+    from cranefe.system import assemble
     from cranefe.assembly.reuse import Reuse
     base = load(os.path.join(ROOT, "models", "hammerhead_tower_crane.yaml"))
     base = base.with_effects(rope_mass=3)

@@ -86,7 +86,7 @@ def _weighted_stiffness(system, row_weight, beam_weight):
     s = system.springs
     K = s.R.T @ sp.diags(s.c * row_weight) @ s.R
     if system.beams is not None:
-        from ..assembly.assemble import Blocks, sum_blocks
+        from ..assembly import Blocks, sum_blocks
         b = system.beams
         w = np.broadcast_to(beam_weight, (len(b.mat),))
         K = K + sum_blocks([Blocks(b.idx, b.mat * w[:, None, None])], K.shape[0])
@@ -570,7 +570,7 @@ def damping(model, method="auto", count=None, system=None, modal=None):
     system, modal : an assembled System and its ModalResult, if already at hand (then
         the first `count` of its modes are reported, all if None).
     """
-    from ..assembly.assemble import assemble
+    from ..system import assemble
     _check_method(method, count)
     t0 = time.perf_counter()
     system = system or assemble(model)

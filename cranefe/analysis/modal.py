@@ -15,7 +15,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..assembly.assemble import assemble
+from ..system import assemble
 from ..condense import DENSE_MAX, condense, massless_split, no_inertia
 from ..errors import AnalysisError
 

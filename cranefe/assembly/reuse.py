@@ -49,8 +49,8 @@ class Reuse:
                          lambda: build_dofs(model, effects))
 
     def null_space(self, P):
-        """`condense.null_space` of the sparse pattern matrix P, found once per matrix."""
-        from ..condense import null_space
+        """`pattern.null_space` of the sparse pattern matrix P, found once per matrix."""
+        from .pattern import null_space
         P = P.tocsr()
         P.sort_indices()
         h = hashlib.sha1(repr(P.shape).encode())

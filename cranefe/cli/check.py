@@ -14,7 +14,7 @@ def add_arguments(p):
 def run(args):
     from dataclasses import replace
 
-    from ..assembly.assemble import assemble
+    from ..system import assemble
     from ..condense import DENSE_MAX, condense
     from ..model import load
     from ..outputs.report import dumps

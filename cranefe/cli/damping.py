@@ -39,7 +39,7 @@ def scene_method(model):
 def run(args):
     import time
 
-    from ..assembly.assemble import assemble
+    from ..system import assemble
     from ..analysis.damping import damping, first_modes, partner_modes
     from ..errors import ModelError
     from ..model import load

@@ -15,7 +15,7 @@ def add_arguments(p):
 
 
 def run(args):
-    from ..assembly.assemble import assemble
+    from ..system import assemble
     from ..model import load
     from ..analysis.modal import drive_reduction, modes
     from ..outputs.report import dumps, modes_document, modes_table

@@ -67,7 +67,7 @@ def run(args):
         from ..analysis.transient.output import write_csv
         written.append(write_csv(args.csv, result))
     if args.archive or args.xdmf:
-        from ..assembly.assemble import assemble
+        from ..system import assemble
         system = assemble(model)
         if args.archive:
             from ..outputs import archive

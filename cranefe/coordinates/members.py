@@ -31,30 +31,6 @@ class MemberMesh:
         return np.unique(self.node[self.beam].ravel())
 
 
-@dataclass(frozen=True)
-class Sections:
-    """Material and section of each element (ne,), from its member."""
-
-    E: np.ndarray
-    G: np.ndarray
-    A: np.ndarray
-    Iy: np.ndarray
-    Iz: np.ndarray
-    J: np.ndarray
-    rho: np.ndarray
-    psi: np.ndarray
-    lumped: np.ndarray        # bool: lumped mass matrix
-
-
-def element_sections(model, mm):
-    """`Sections` of the elements of `mm`, read from the model's members (the mesh is
-    structure only, so one mesh serves models that differ in these values)."""
-    per = {k: np.array([float(getattr(m, k)) for m in model.members])
-           for k in ("E", "G", "A", "Iy", "Iz", "J", "rho", "psi")}
-    lumped = np.array([m.mass == "lumped" for m in model.members], dtype=bool)
-    return Sections(**{k: v[mm.member] for k, v in per.items()}, lumped=lumped[mm.member])
-
-
 def discretize(model, first_node):
     """MemberMesh of the model's members; interior nodes are numbered from first_node.
 

@@ -16,6 +16,9 @@ ordinary translational nodes (only along the fall when sway is off).
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+
+from ..elements import rope_force
 
 
 @dataclass(frozen=True)
@@ -137,15 +140,6 @@ def discretize(model, n_elements, include_massless=False):
                     tuple(slip_names), **arr)
 
 
-def element_materials(model, rm):
-    """(EA, mu), each (ne,), of the elements of `rm`, read from their ropes (the mesh is
-    structure only, so one mesh serves models that differ in these values); the
-    extra-length piece of a rope is massless."""
-    EA = np.array([r.EA for r in model.ropes], dtype=float)
-    mu = np.array([r.mass_per_length for r in model.ropes], dtype=float)
-    return EA[rm.rope], np.where(rm.fall >= 0, mu[rm.rope], 0.0)
-
-
 def endpoint_maps(rm, layout):
     """Element end displacements in primitive coordinates.
 
@@ -166,3 +160,36 @@ def endpoint_maps(rm, layout):
         coef = np.where((slip >= 0) | (drum >= 0), rm.coef[:, end], 0.0)
         B[:, 3 * end:3 * end + 3, 4 * end + 3] = coef[:, None] * rm.e
     return dofs, B
+
+
+def rope_rows(model, layout, which=None, coords=None):
+    """Massless ropes: one elongation row per rope over its whole path (seed eq. 2-3).
+
+    Returns (R (len(which), n_primitive), deformable lengths L): rows for the ropes
+    `which` (default all) at the positions `coords` (default: the model's reference
+    geometry). A drum at an end hauls in ``radius * rotation``, which stretches the rope:
+    coefficient +radius on the drum's rotation.
+    """
+    which = list(range(len(model.ropes)) if which is None else which)
+    coords = model.coords if coords is None else coords
+    ropes = [model.ropes[k] for k in which]
+    if not ropes:
+        return sp.csr_matrix((0, layout.size)), np.zeros(0)
+    a = np.concatenate([r.span_a for r in ropes])
+    b = np.concatenate([r.span_b for r in ropes])
+    falls = np.concatenate([r.falls for r in ropes])
+    rope = np.repeat(np.arange(len(ropes)), [len(r.falls) for r in ropes])
+    extra = np.array([r.extra_length for r in ropes])
+    state = rope_force(coords, a, b, falls, rope, np.zeros(len(ropes)), np.ones(len(ropes)),
+                       extra)
+    rows = [np.repeat(rope, 6)]
+    cols = [np.hstack([layout.node(a), layout.node(b)]).ravel()]
+    vals = [state.grad.ravel()]
+    for k, r in enumerate(ropes):
+        for d in r.end_drums:
+            rows.append([k])
+            cols.append([layout.drum(d)])
+            vals.append([model.drums[d].radius])
+    R = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                      shape=(len(ropes), layout.size)).tocsr()
+    return R, state.L

@@ -26,7 +26,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..assembly.assemble import assemble
+from ..system import assemble
 from ..analysis.damping import (exact_hysteretic, exact_viscous, modal_damping, partner_modes)
 from ..model import load
 from ._common import pyplot, save, write_csv

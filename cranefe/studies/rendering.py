@@ -41,7 +41,7 @@ def run(outdir, quick=False):
                        os.path.join(tmp, f"i{n}")], repeat)
             rows.append((f"modes + {n} images (whole process)", t, n))
         # in one process: the first image pays the back-end probe and the pyvista import
-        from ..assembly.assemble import assemble
+        from ..system import assemble
         from ..model import load
         from ..analysis.modal import modes
         from ..outputs.render import render_modes

@@ -160,7 +160,7 @@ def run(outdir, quick=False):
 
 def _falls(model, hook):
     """Drum radius over hook falls: hook speed per drum speed (from the rope row)."""
-    from ..assembly.assemble import assemble
+    from ..system import assemble
     s = assemble(model)
     d = s.dofs
     R = s.springs.R @ d.T

@@ -24,7 +24,7 @@ class Variant:
 
     @cached_property
     def system(self):
-        from ..assembly.assemble import assemble
+        from ..system import assemble
         return assemble(self.model, reuse=self.reuse)
 
     @cached_property

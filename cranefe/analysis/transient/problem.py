@@ -23,7 +23,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ...assembly.assemble import assemble
+from ...system import assemble
 from ...condense import massless_split
 from ...errors import ModelError
 from .equations import Equations, MotorLoad, Signal
