@@ -16,7 +16,7 @@ from .assembly import elastic_stiffness, mass_and_gravity, null_space, pattern
 from .assembly.materials import element_sections
 from .coordinates import build_dofs, entry_of
 from .elements import span_geometry
-from .errors import AnalysisError, ModelError
+from .errors import ModelError
 from .model import GROUND
 
 STATIC_DENSE_MAX = 400  # up to this many coordinates, statics finds its null space densely

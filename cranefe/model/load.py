@@ -7,6 +7,7 @@ names the file, the entry (``ropes.hoist.path[2]``) and what to change.
 import difflib
 import math
 import os
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -252,7 +253,30 @@ class _Names:
         self.r.fail(entry, f"unknown {' or '.join(kinds)} '{name}'{hint}")
 
 
-def _build_model(data, file, text, r):
+@dataclass
+class _Ctx:
+    """What the sections of a model file share while it is read."""
+
+    r: object
+    names: object
+    planar: bool
+    coords: np.ndarray = None
+    node_names: tuple = ()
+    scale: float = 1.0
+    raw: dict = None
+    mesh_pairs: dict = None
+
+    def node(self, v, entry):
+        return self.names.get(v, "node", entry)[1]
+
+    def body(self, v, entry):
+        if v == "ground":
+            return GROUND
+        return self.names.get(v, "body", entry)[1]
+
+
+def _header(data, r):
+    """Keys, version, name, plane and gravity -> (planar, gravity)."""
     r.keys(data, "", MODEL_KEYS)
     r.version(data)
     if "nodes" not in data:
@@ -267,9 +291,15 @@ def _build_model(data, file, text, r):
         else np.array([0.0, 0.0, -9.81])
     if planar and gravity[1] != 0:
         r.fail("gravity", "a plane: xz model needs gravity with y = 0")
-    names = _Names(r)
+    return planar, gravity
 
-    # nodes
+
+def _nodes(data, c):
+    """Nodes (and the points of members given as mesh files, merged with coinciding
+    ones); then every name of the other sections, so that a reference to an entry further
+    down the file that is of another kind says what it is ("'jib' is a body, not a
+    node")."""
+    r, names, planar = c.r, c.names, c.planar
     nodes = r.mapping(data["nodes"], "nodes")
     if not nodes:
         r.fail("nodes", "a model needs at least one node")
@@ -287,33 +317,37 @@ def _build_model(data, file, text, r):
         if isinstance(m, dict) and "mesh" in m:
             coords, mesh_pairs[mname] = _mesh_member(mname, m["mesh"], r, coords, node_names,
                                                      names, planar)
-    node_names = tuple(node_names)
-    scale = float(np.ptp(coords, axis=0).max()) or 1.0
-
+    c.coords, c.node_names, c.mesh_pairs = coords, tuple(node_names), mesh_pairs
+    c.scale = float(np.ptp(coords, axis=0).max()) or 1.0
     # register every name first, so that a reference to an entry further down the file
     # that is of another kind says what it is ("'jib' is a body, not a node")
-    raw = {}
+    c.raw = raw = {}
     for section, kind in (("bodies", "body"), ("drums", "drum"), ("ropes", "rope"),
                           ("members", "member"), ("linear_drives", "linear drive")):
         raw[section] = r.mapping(data.get(section), section)
         for i, n in enumerate(raw[section]):
             names.add(kind, n, i)
 
-    def node(v, entry):
-        return names.get(v, "node", entry)[1]
 
+
+def _ground(data, c):
+    r = c.r
     ground = []
     for i, n in enumerate(r.listing(data.get("ground", []) or [], "ground")):
-        g = node(n, f"ground[{i}]")
+        g = c.node(n, f"ground[{i}]")
         if g in ground:
             r.fail(f"ground[{i}]", f"node '{n}' is listed twice")
         ground.append(g)
 
-    # point masses
+    return ground
+
+
+def _masses(data, c):
+    r, planar = c.r, c.planar
     pm_nodes, pm_mass, pm_inertia = [], [], []
     for n, v in r.mapping(data.get("masses"), "masses").items():
         e = f"masses.{n}"
-        i = node(n, e)
+        i = c.node(n, e)
         if isinstance(v, dict):
             r.keys(v, e, {"mass", "inertia"}, required=("mass",))
             m = r.number(v["mass"], f"{e}.mass", positive=True)
@@ -328,10 +362,15 @@ def _build_model(data, file, text, r):
     masses = PointMasses(np.array(pm_nodes, dtype=int), np.array(pm_mass, dtype=float),
                          np.array(pm_inertia, dtype=float).reshape(-1, 3, 3))
 
-    # bodies
+    return masses
+
+
+def _bodies(c):
+    """Rigid bodies -> (bodies, owner: node -> [(body, position in its list)])."""
+    r, planar, coords, names = c.r, c.planar, c.coords, c.names
     bodies = []
     owner = {}
-    for bi, (bname, b) in enumerate(raw["bodies"].items()):
+    for bi, (bname, b) in enumerate(c.raw["bodies"].items()):
         e = f"bodies.{bname}"
         if bname == "ground":
             r.fail(e, "'ground' is the name of the fixed frame; rename the body")
@@ -342,7 +381,7 @@ def _build_model(data, file, text, r):
                 if k not in b:
                     r.fail(e, f"a body with mass needs '{k}'")
         if "com" in b:
-            com = coords[node(b["com"], f"{e}.com")] if isinstance(b["com"], str) \
+            com = coords[c.node(b["com"], f"{e}.com")] if isinstance(b["com"], str) \
                 else r.vector(b["com"], f"{e}.com")
             if planar and com[1] != 0:
                 r.fail(f"{e}.com", "is off the x-z plane of a plane: xz model")
@@ -352,7 +391,7 @@ def _build_model(data, file, text, r):
             if "inertia" in b else np.zeros((3, 3))
         bnodes = []
         for k, n in enumerate(r.listing(b.get("nodes", []) or [], f"{e}.nodes")):
-            i = node(n, f"{e}.nodes[{k}]")
+            i = c.node(n, f"{e}.nodes[{k}]")
             if i in bnodes:
                 r.fail(f"{e}.nodes[{k}]", f"node '{n}' is listed twice")
             owner.setdefault(i, []).append((bi, k))
@@ -362,12 +401,11 @@ def _build_model(data, file, text, r):
         names.add("body", bname, bi)
         bodies.append(Body(bname, m, com, inertia, tuple(bnodes)))
 
-    def body(v, entry):
-        if v == "ground":
-            return GROUND
-        return names.get(v, "body", entry)[1]
+    return bodies, owner
 
-    # joints
+
+def _joints(data, c):
+    r, planar = c.r, c.planar
     joints = []
     for k, j in enumerate(r.listing(data.get("joints", []) or [], "joints")):
         e = f"joints[{k}]"
@@ -378,11 +416,11 @@ def _build_model(data, file, text, r):
         pair = r.listing(j["bodies"], f"{e}.bodies")
         if len(pair) != 2:
             r.fail(f"{e}.bodies", "a joint connects exactly two bodies (one may be ground)")
-        b1, b2 = body(pair[0], f"{e}.bodies[0]"), body(pair[1], f"{e}.bodies[1]")
+        b1, b2 = c.body(pair[0], f"{e}.bodies[0]"), c.body(pair[1], f"{e}.bodies[1]")
         if b1 == b2:
             r.fail(f"{e}.bodies", f"a joint connects two different bodies (found "
                    f"'{pair[0]}' twice); name the other body or 'ground'")
-        at = node(j["at"], f"{e}.at")
+        at = c.node(j["at"], f"{e}.at")
         axis = None
         if j["type"] in ("hinge", "slider"):
             if "axis" in j:
@@ -401,6 +439,12 @@ def _build_model(data, file, text, r):
             r.fail(f"{e}.axis", f"a {j['type']} joint has no axis; remove it")
         joints.append(Joint(j["type"], (b1, b2), at, axis, e))
 
+    return joints
+
+
+def _shared_nodes(c, bodies, joints, owner, ground):
+    """A node belongs to one body unless a joint between the bodies is at it."""
+    r, node_names = c.r, c.node_names
     joint_nodes = {}
     for j in joints:
         joint_nodes.setdefault(j.at, set()).update(j.bodies)
@@ -420,7 +464,10 @@ def _build_model(data, file, text, r):
                    f"between the body and the ground may be both: add a joint to ground "
                    f"at '{node_names[i]}' or remove it from ground or from the body")
 
-    # springs
+
+
+def _springs(data, c):
+    r, planar, coords, scale = c.r, c.planar, c.coords, c.scale
     springs = []
     seen = set()
     for k, s in enumerate(r.listing(data.get("springs", []) or [], "springs")):
@@ -435,7 +482,7 @@ def _build_model(data, file, text, r):
         e = f"springs.{sname}" if "name" in s else e
         r.keys(s, e, {"name", "type", "nodes", "bodies", "at", "axis", "stiffness", "psi"},
                required=("type", "stiffness"))
-        c = r.number(s["stiffness"], f"{e}.stiffness", positive=True)
+        k_s = r.number(s["stiffness"], f"{e}.stiffness", positive=True)
         psi = r.number(s.get("psi", 0.0), f"{e}.psi", nonneg=True)
         if s["type"] == "axial":
             for bad in ("bodies", "axis"):
@@ -444,20 +491,20 @@ def _build_model(data, file, text, r):
             pair = r.listing(s.get("nodes"), f"{e}.nodes")
             if len(pair) != 2:
                 r.fail(f"{e}.nodes", "an axial spring joins exactly two nodes")
-            a, b = node(pair[0], f"{e}.nodes[0]"), node(pair[1], f"{e}.nodes[1]")
+            a, b = c.node(pair[0], f"{e}.nodes[0]"), c.node(pair[1], f"{e}.nodes[1]")
             if np.linalg.norm(coords[b] - coords[a]) <= 1e-9 * scale:
                 r.fail(f"{e}.nodes", "the two nodes coincide: an axial spring needs a length")
-            springs.append(Spring(sname, "axial", c, psi, nodes=(a, b)))
+            springs.append(Spring(sname, "axial", k_s, psi, nodes=(a, b)))
         elif s["type"] == "rotational":
             if "nodes" in s:
                 r.fail(f"{e}.nodes", "a rotational spring joins two bodies; use 'bodies'")
             pair = r.listing(s.get("bodies"), f"{e}.bodies")
             if len(pair) != 2:
                 r.fail(f"{e}.bodies", "a rotational spring joins exactly two bodies")
-            b1, b2 = body(pair[0], f"{e}.bodies[0]"), body(pair[1], f"{e}.bodies[1]")
+            b1, b2 = c.body(pair[0], f"{e}.bodies[0]"), c.body(pair[1], f"{e}.bodies[1]")
             if b1 == b2:
                 r.fail(f"{e}.bodies", "a rotational spring joins two different bodies")
-            at = node(s["at"], f"{e}.at") if "at" in s else -1
+            at = c.node(s["at"], f"{e}.at") if "at" in s else -1
             if "axis" in s:
                 axis = r.unit(s["axis"], f"{e}.axis")
             elif planar:
@@ -467,14 +514,18 @@ def _build_model(data, file, text, r):
                        "'axis: [x, y, z]'")
             if planar and abs(abs(axis[1]) - 1) > 1e-12:
                 r.fail(f"{e}.axis", "in a plane: xz model rotations are about [0, 1, 0]")
-            springs.append(Spring(sname, "rotational", c, psi, bodies=(b1, b2), at=at,
+            springs.append(Spring(sname, "rotational", k_s, psi, bodies=(b1, b2), at=at,
                                   axis=axis))
         else:
             r.fail(f"{e}.type", f"unknown spring type {s['type']!r}; use axial or rotational")
 
-    # drums
+    return springs
+
+
+def _drums(c):
+    r, names = c.r, c.names
     drums = []
-    for di, (dname, d) in enumerate(raw["drums"].items()):
+    for di, (dname, d) in enumerate(c.raw["drums"].items()):
         e = f"drums.{dname}"
         if "node" in names.kinds.get(dname, {}):
             r.fail(e, f"'{dname}' is also a node name; rope paths need drum names distinct "
@@ -485,7 +536,7 @@ def _build_model(data, file, text, r):
         r.keys(motor, f"{e}.motor", {"rotor_inertia", "gear_ratio"},
                required=("rotor_inertia", "gear_ratio") if motor else ())
         drums.append(Drum(
-            dname, node(d["node"], f"{e}.node"),
+            dname, c.node(d["node"], f"{e}.node"),
             r.number(d["radius"], f"{e}.radius", positive=True),
             r.number(d["inertia"], f"{e}.inertia", positive=True),
             r.number(motor.get("rotor_inertia", 0.0), f"{e}.motor.rotor_inertia",
@@ -494,36 +545,64 @@ def _build_model(data, file, text, r):
             r.boolean(d.get("brake", False), f"{e}.brake")))
         names.add("drum", dname, di)
 
+    return drums
+
+
+def _ropes_and_members(c, drums):
+    r, names, coords, scale, planar = c.r, c.names, c.coords, c.scale, c.planar
+    node_names, mesh_pairs = c.node_names, c.mesh_pairs
     # ropes
     ropes = []
-    for rname, rp in raw["ropes"].items():
+    for rname, rp in c.raw["ropes"].items():
         ropes.append(_rope(rname, rp, r, names, coords, scale, node_names, drums))
         names.add("rope", rname, len(ropes) - 1)
 
     # members
     members = []
-    for mname, m in raw["members"].items():
-        members.append(_member(mname, m, r, node, coords, scale, planar,
+    for mname, m in c.raw["members"].items():
+        members.append(_member(mname, m, r, c.node, coords, scale, planar,
                                mesh_pairs.get(mname), names))
         names.add("member", mname, len(members) - 1)
 
-    # linear drives
+    return ropes, members
+
+
+def _linear_drives(c):
+    r, coords, scale = c.r, c.coords, c.scale
     linear = []
-    for lname, ld in raw["linear_drives"].items():
+    for lname, ld in c.raw["linear_drives"].items():
         e = f"linear_drives.{lname}"
         r.keys(ld, e, {"nodes", "pinion_radius", "gear_ratio", "rotor_inertia"},
                required=("nodes", "pinion_radius", "gear_ratio"))
         pair = r.listing(ld["nodes"], f"{e}.nodes")
         if len(pair) != 2:
             r.fail(f"{e}.nodes", "a linear drive sets the distance between two nodes")
-        a, c = node(pair[0], f"{e}.nodes[0]"), node(pair[1], f"{e}.nodes[1]")
-        if np.linalg.norm(coords[c] - coords[a]) <= 1e-9 * scale:
+        a, cn = c.node(pair[0], f"{e}.nodes[0]"), c.node(pair[1], f"{e}.nodes[1]")
+        if np.linalg.norm(coords[cn] - coords[a]) <= 1e-9 * scale:
             r.fail(f"{e}.nodes", "the two nodes coincide; the drive needs a length")
         linear.append(LinearDrive(
-            lname, (a, c), r.number(ld["pinion_radius"], f"{e}.pinion_radius", positive=True),
+            lname, (a, cn), r.number(ld["pinion_radius"], f"{e}.pinion_radius", positive=True),
             r.number(ld["gear_ratio"], f"{e}.gear_ratio", positive=True),
             r.number(ld.get("rotor_inertia", 0.0), f"{e}.rotor_inertia", nonneg=True)))
 
+    return linear
+
+
+def _build_model(data, file, text, r):
+    """The Model of a model file's data: one section at a time, each with its checks."""
+    planar, gravity = _header(data, r)
+    c = _Ctx(r, _Names(r), planar)
+    _nodes(data, c)
+    ground = _ground(data, c)
+    masses = _masses(data, c)
+    bodies, owner = _bodies(c)
+    joints = _joints(data, c)
+    _shared_nodes(c, bodies, joints, owner, ground)
+    springs = _springs(data, c)
+    drums = _drums(c)
+    ropes, members = _ropes_and_members(c, drums)
+    linear = _linear_drives(c)
+    coords, node_names = c.coords, c.node_names
     effects = _effects(data.get("effects"), Effects(), r, "effects")
     name = data.get("name", os.path.splitext(os.path.basename(file))[0])
     return Model(
