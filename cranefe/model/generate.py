@@ -34,7 +34,11 @@ class _Builder:
 
 
 def tower_crane(panels=16, jib_panels=20, counter_panels=6, tie_every=12, load=8000.0):
-    """A model dict (model-format.md, with member `pairs`) of a lattice tower crane."""
+    """A model dict (model-format.md, with member `pairs`) of a lattice tower crane.
+
+    Length: the generated crane written out part by part (mast, jib, counter-jib,
+    ropes), as the module docstring sketches it.
+    """
     B = _Builder()
     half = WIDTH / 2
     corners = [(-half, -half), (half, -half), (half, half), (-half, half)]

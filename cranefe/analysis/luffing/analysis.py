@@ -350,7 +350,11 @@ class Luffing:
 
 
 def analyse(model, file=None, collocation=True, sensitivity=True, samples=801):
-    """The luffing analysis of a scene: a `LuffingResult`."""
+    """The luffing analysis of a scene: a `LuffingResult`.
+
+    Length: one straight sequence of the analysis's steps, each a call; splitting it
+    would only pass its dozen intermediate results between functions.
+    """
     t0 = time.perf_counter()
     timings = {}
     scene = read_scene(model, file)

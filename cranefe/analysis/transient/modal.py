@@ -54,7 +54,11 @@ def _modes(problem, k):
 
 def modal_equations(problem, spec):
     """Equations in the retained principal coordinates (rigid ones first) and a map
-    back to q; returns (Equations, info dict)."""
+    back to q; returns (Equations, info dict).
+
+    Length: the modal reduction in the order of its derivation (modes, static
+    correction, drives, damping); each step feeds the next.
+    """
     p = problem
     model, sub, free = p.model, p.sub, p.free
     n = p.n

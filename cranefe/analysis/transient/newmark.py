@@ -225,6 +225,12 @@ class Stepper:
 
     # ------------------------------------------------------------ the run
     def run(self, duration, h, breakpoints=(), stride=1):
+        """Step from 0 to `duration` on a grid of about `h`, landing on `breakpoints`,
+        locating events and recording every `stride`-th step.
+
+        Length: the time-stepping loop with its event handling; the hot loop is kept in
+        one frame for speed.
+        """
         eq = self.eq
         n_grid = int(np.ceil(duration / h - 1e-9))
         h = duration / n_grid

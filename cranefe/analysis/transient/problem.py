@@ -83,7 +83,11 @@ class Problem:
 
     def __init__(self, model, spec, damping=True, reuse=None):
         """damping=False leaves the viscous matrix out (modal superposition damps its
-        principal coordinates itself); reuse: a `cranefe.assembly.reuse.Reuse` (sweeps)."""
+        principal coordinates itself); reuse: a `cranefe.assembly.reuse.Reuse` (sweeps).
+
+        Length: reads every part of the scene into the problem's arrays in one place, in
+        the order docs/transient.md lists them.
+        """
         from ...statics import solve_static
         self.model, self.spec = model, spec
         file = model.scene_file or model.file
