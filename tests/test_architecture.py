@@ -11,7 +11,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "cranefe"
 # the pipeline in order (docs/theory.md, "Pipeline"); a module may import only from its
 # own stage or earlier ones
 STAGES = ("errors", "cases", "elements", "model", "coordinates", "assembly", "statics",
-          "system", "condense", "analysis", "outputs", "sweeps", "studies", "cli",
+          "system", "condense", "analysis", "outputs", "sweeps", "api", "studies", "cli",
           "__main__")
 BASE = {"errors", "cases"}          # leaves anyone may use
 MAX_LINES = 80                      # a longer function gives its reason in its docstring

@@ -17,6 +17,7 @@ import scipy.sparse.linalg as spla
 from ..system import assemble
 from ..condense import DENSE_MAX, condense, massless_split, no_inertia
 from ..errors import AnalysisError
+from .jsonable import num, timings
 
 SMALL = 300        # below this many coordinates the dense solution is the fastest
 
@@ -39,6 +40,7 @@ class ModalResult:
     warnings: list = field(default_factory=list)
     status: int = 0
     message: str = "ok"
+    drive_reduction: dict = None   # with drive: reduced, the comparison of `drive_reduction`
 
     @property
     def frequency_hz(self):
@@ -53,6 +55,28 @@ class ModalResult:
     @property
     def dofs(self):
         return len(self.labels)
+
+    def to_dict(self, comparison=None):
+        """The JSON document of ``cranefe modes --json`` (design.md, "Command-line
+        contract"); `comparison`: the drive-reduction comparison, if any."""
+        doc = {
+            "model": self.model_name,
+            "effects": self.effects,
+            "dofs": self.dofs,
+            "quasi_cyclic": list(self.quasi_cyclic),
+            "massless_condensed": len(self.massless),
+            "solver": self.solver,
+            "modes": [{"index": i + 1, "frequency_hz": num(f), "omega_rad_s": num(w),
+                       "period_s": num(t), "rigid": bool(r)}
+                      for i, (f, w, t, r) in enumerate(zip(self.frequency_hz, self.omega,
+                                                           self.period_s, self.rigid))],
+            "timings_s": timings(self.timings),
+            "warnings": list(self.warnings),
+        }
+        comparison = self.drive_reduction if comparison is None else comparison
+        if comparison is not None:
+            doc["drive_reduction"] = comparison
+        return doc
 
 
 def modes(model, effects=None, count=None, solver="auto", system=None):

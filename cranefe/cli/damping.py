@@ -23,24 +23,11 @@ def add_arguments(p):
     add_output_arguments(p)
 
 
-def scene_method(model):
-    """The method a scene asks for: analysis.method, else effects.damping, else auto."""
-    from ..analysis.damping import METHODS
-    from ..errors import ModelError
-    method = model.analysis.get("method")
-    if method is not None:
-        if method not in METHODS:
-            raise ModelError(f"{method!r} is not one of {', '.join(METHODS)}",
-                             model.scene_file or model.file, "analysis.method")
-        return method
-    return {"modal": "modal", "exact": "exact"}.get(model.effects.damping, "auto")
-
-
 def run(args):
     import time
 
     from ..system import assemble
-    from ..analysis.damping import damping, first_modes, partner_modes
+    from ..analysis.damping import damping, first_modes, partner_modes, scene_method
     from ..errors import ModelError
     from ..model import load
     from ..outputs.report import damping_modes_document, damping_modes_table, dumps

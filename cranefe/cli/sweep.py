@@ -21,31 +21,24 @@ def run(args):
     import json
     import sys
 
-    import numpy as np
     from rich.progress import Progress
 
     from ..sweeps.engine import run_sweep
     from ..sweeps.spec import load_sweep
-    from ..sweeps.table import read_table
+    from ..sweeps.summary import summarise
     sweep = load_sweep(args.file)
     with Progress(transient=True, disable=not sys.stderr.isatty()) as bar:
         task = bar.add_task(sweep.name, total=len(sweep.variants))
         done = run_sweep(sweep, workers=args.workers, scheduler=args.scheduler,
                          reuse=not args.no_reuse,
                          progress=lambda k: bar.advance(task, k))
-    table = read_table(sweep.output)
-    failed = [(i, r["error"]) for i, r in sorted(done.items()) if r["status"] != "ok"]
+    run_ = summarise(sweep, done)
+    table, failed = run_.table, run_.failed
     if args.plots:
         from ..sweeps.plots import plot_table
         for path in plot_table(table, args.plots):
             print(f"wrote {path}", file=sys.stderr)
-    summary = {"sweep": sweep.name, "variants": len(sweep.variants), "done": len(done),
-               "failed": len(failed), "table": sweep.output,
-               "outputs": {o: {"min": float(np.nanmin(table.results[:, k])),
-                               "max": float(np.nanmax(table.results[:, k]))}
-                           if np.isfinite(table.results[:, k]).any() else None
-                           for k, o in enumerate(sweep.outputs)},
-               "errors": [{"index": i, "error": e} for i, e in failed[:20]]}
+    summary = run_.to_dict()
     if args.json:
         print(json.dumps(summary, indent=2))
     else:

@@ -12,24 +12,8 @@ def _num(x):
 
 
 def modes_document(result, comparison=None):
-    """The JSON document of ``cranefe modes --json``."""
-    doc = {
-        "model": result.model_name,
-        "effects": result.effects,
-        "dofs": result.dofs,
-        "quasi_cyclic": list(result.quasi_cyclic),
-        "massless_condensed": len(result.massless),
-        "solver": result.solver,
-        "modes": [{"index": i + 1, "frequency_hz": _num(f), "omega_rad_s": _num(w),
-                   "period_s": _num(t), "rigid": bool(r)}
-                  for i, (f, w, t, r) in enumerate(zip(result.frequency_hz, result.omega,
-                                                       result.period_s, result.rigid))],
-        "timings_s": {k: round(v, 6) for k, v in result.timings.items()},
-        "warnings": list(result.warnings),
-    }
-    if comparison is not None:
-        doc["drive_reduction"] = comparison
-    return doc
+    """The JSON document of ``cranefe modes --json``: `ModalResult.to_dict`."""
+    return result.to_dict(comparison)
 
 
 def dumps(doc):
@@ -116,56 +100,9 @@ def damping_table(result):
 
 
 
-def _finite_or_none(values, k):
-    return None if values is None else _num(values[k])
-
-
 def damping_modes_document(result):
-    """The JSON document of ``cranefe damping --json``: the keys of ``cranefe modes``
-    (index as there, rigid modes included) plus, per mode, the decoupled estimate
-    (``damping_ratio``, ``damped_frequency_hz``, ``log_decrement``), Hasselman's
-    ``coupling`` (largest coefficient, ``coupled_with`` that mode), ``weak_coupling``,
-    ``predicted_error``, and where solved ``exact`` (viscous) and ``hysteretic``
-    (complex stiffness) objects with their relative error."""
-    from ..analysis.damping import ERROR_TOL, KAPPA
-    err_v, err_h = result.error_viscous, result.error_hysteretic
-    dec_v, dec_h = result.exact_log_decrement, result.hysteretic_log_decrement
-    modes = []
-    for k in range(len(result.omega)):
-        w, rigid = float(result.omega[k]), bool(result.rigid[k])
-        m = {"index": k + 1, "frequency_hz": _num(w / (2 * math.pi)),
-             "omega_rad_s": _num(w), "period_s": None if rigid else _num(2 * math.pi / w),
-             "rigid": rigid,
-             "damping_ratio": _num(result.zeta[k]),
-             "damped_frequency_hz": _num(result.damped_omega[k] / (2 * math.pi)),
-             "log_decrement": _num(result.log_decrement[k]),
-             "coupling": _num(result.coupling[k]),
-             "coupled_with": (int(result.coupled_with[k]) + 1
-                              if result.coupled_with[k] >= 0 else None),
-             "weak_coupling": bool(result.criterion_holds[k]),
-             "predicted_error": _num(result.predicted_error[k]),
-             "absorbed_most_by": ({"element": result.dominant_element[k],
-                                   "share": _num(result.dominant_share[k])}
-                                  if result.dominant_element[k] else None)}
-        if result.exact_zeta is not None and not np.isnan(result.exact_zeta[k]):
-            m["exact"] = {"damping_ratio": _num(result.exact_zeta[k]),
-                          "damped_frequency_hz":
-                              _num(result.exact_damped_omega[k] / (2 * math.pi)),
-                          "log_decrement": None if rigid else _num(dec_v[k]),
-                          "relative_error": _finite_or_none(err_v, k)}
-            m["hysteretic"] = {"damping_ratio": _num(result.hysteretic_zeta[k]),
-                               "damped_frequency_hz":
-                                   _num(result.hysteretic_damped_omega[k] / (2 * math.pi)),
-                               "log_decrement": None if rigid else _num(dec_h[k]),
-                               "relative_error": _finite_or_none(err_h, k)}
-        modes.append(m)
-    return {"model": result.model_name, "effects": result.effects, "dofs": result.dofs,
-            "quasi_cyclic": list(result.quasi_cyclic), "method": result.method,
-            "criterion": {"coupling_limit": KAPPA, "error_limit": ERROR_TOL,
-                          "holds": bool(np.all(result.trusted))},
-            "modes": modes,
-            "timings_s": {k: round(v, 6) for k, v in result.timings.items()},
-            "warnings": list(result.warnings)}
+    """The JSON document of ``cranefe damping --json``: `DampingResult.to_dict`."""
+    return result.to_dict()
 
 
 def damping_modes_table(result):

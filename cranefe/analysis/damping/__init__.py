@@ -30,7 +30,7 @@ the undamped modes concerned. Eigenvalues are assigned to modes by their partici
 ``|V_i^T M x|^2 / x^H M x``.
 """
 
-from .analysis import damping, first_modes, partner_modes
+from .analysis import damping, first_modes, partner_modes, scene_method
 from .constants import (DENSE_MAX, ERROR_TOL, EXTRA_MODES, KAPPA, METHODS, PARTNER_SPAN,
                         UNDAMPED)
 from .element import (damping_matrix, element_frequencies, equivalent_viscous,
@@ -39,7 +39,7 @@ from .exact import exact_hysteretic, exact_viscous
 from .modal import ModalDamping, modal_damping, modal_damping_ratios
 from .result import DampingResult
 
-__all__ = ["damping", "first_modes", "partner_modes", "DENSE_MAX", "ERROR_TOL",
+__all__ = ["damping", "scene_method", "first_modes", "partner_modes", "DENSE_MAX", "ERROR_TOL",
            "EXTRA_MODES", "KAPPA", "METHODS", "PARTNER_SPAN", "UNDAMPED", "damping_matrix",
            "element_frequencies", "equivalent_viscous", "polyharmonic_k1", "psi_stiffness",
            "exact_hysteretic", "exact_viscous", "ModalDamping", "modal_damping",

@@ -13,6 +13,17 @@ from .modal import modal_damping
 from .result import DampingResult, _log_decrement
 
 
+def scene_method(model):
+    """The method a scene asks for: analysis.method, else effects.damping, else auto."""
+    method = model.analysis.get("method")
+    if method is not None:
+        if method not in METHODS:
+            raise ModelError(f"{method!r} is not one of {', '.join(METHODS)}",
+                             model.scene_file or model.file, "analysis.method")
+        return method
+    return {"modal": "modal", "exact": "exact"}.get(model.effects.damping, "auto")
+
+
 def _check_method(method, count):
     if method not in METHODS:
         raise ModelError(f"damping method {method!r}: use one of {', '.join(METHODS)}",

@@ -1,10 +1,12 @@
 """The result of a damping analysis."""
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 
+from ..jsonable import num, timings
 from .constants import ERROR_TOL, KAPPA
 
 
@@ -77,6 +79,56 @@ class DampingResult:
         """Relative error of the decoupled zeta against the complex-stiffness one."""
         return None if self.hysteretic_zeta is None else _rel(self.zeta,
                                                              self.hysteretic_zeta)
+
+    def to_dict(self):
+        """The JSON document of ``cranefe damping --json``: the keys of ``cranefe modes``
+        (index as there, rigid modes included) plus, per mode, the decoupled estimate
+        (``damping_ratio``, ``damped_frequency_hz``, ``log_decrement``), Hasselman's
+        ``coupling`` (largest coefficient, ``coupled_with`` that mode), ``weak_coupling``,
+        ``predicted_error``, and where solved ``exact`` (viscous) and ``hysteretic``
+        (complex stiffness) objects with their relative error."""
+        err_v, err_h = self.error_viscous, self.error_hysteretic
+        dec_v, dec_h = self.exact_log_decrement, self.hysteretic_log_decrement
+        modes = []
+        for k in range(len(self.omega)):
+            w, rigid = float(self.omega[k]), bool(self.rigid[k])
+            m = {"index": k + 1, "frequency_hz": num(w / (2 * math.pi)),
+                 "omega_rad_s": num(w), "period_s": None if rigid else num(2 * math.pi / w),
+                 "rigid": rigid,
+                 "damping_ratio": num(self.zeta[k]),
+                 "damped_frequency_hz": num(self.damped_omega[k] / (2 * math.pi)),
+                 "log_decrement": num(self.log_decrement[k]),
+                 "coupling": num(self.coupling[k]),
+                 "coupled_with": (int(self.coupled_with[k]) + 1
+                                  if self.coupled_with[k] >= 0 else None),
+                 "weak_coupling": bool(self.criterion_holds[k]),
+                 "predicted_error": num(self.predicted_error[k]),
+                 "absorbed_most_by": ({"element": self.dominant_element[k],
+                                       "share": num(self.dominant_share[k])}
+                                      if self.dominant_element[k] else None)}
+            if self.exact_zeta is not None and not np.isnan(self.exact_zeta[k]):
+                m["exact"] = {"damping_ratio": num(self.exact_zeta[k]),
+                              "damped_frequency_hz":
+                                  num(self.exact_damped_omega[k] / (2 * math.pi)),
+                              "log_decrement": None if rigid else num(dec_v[k]),
+                              "relative_error": _finite_or_none(err_v, k)}
+                m["hysteretic"] = {"damping_ratio": num(self.hysteretic_zeta[k]),
+                                   "damped_frequency_hz":
+                                       num(self.hysteretic_damped_omega[k] / (2 * math.pi)),
+                                   "log_decrement": None if rigid else num(dec_h[k]),
+                                   "relative_error": _finite_or_none(err_h, k)}
+            modes.append(m)
+        return {"model": self.model_name, "effects": self.effects, "dofs": self.dofs,
+                "quasi_cyclic": list(self.quasi_cyclic), "method": self.method,
+                "criterion": {"coupling_limit": KAPPA, "error_limit": ERROR_TOL,
+                              "holds": bool(np.all(self.trusted))},
+                "modes": modes,
+                "timings_s": timings(self.timings),
+                "warnings": list(self.warnings)}
+
+
+def _finite_or_none(values, k):
+    return None if values is None else num(values[k])
 
 
 def _log_decrement(zeta):

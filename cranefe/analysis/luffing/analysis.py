@@ -149,6 +149,11 @@ class LuffingResult:
     timings: dict = field(default_factory=dict)
     warnings: list = field(default_factory=list)
 
+    def to_dict(self):
+        """The JSON document of ``cranefe luff --json`` (docs/luffing.md)."""
+        from .report import luffing_document
+        return luffing_document(self)
+
 
 class Luffing:
     """The linkage of a luffing scene with its reduced quantities (`Proxy`)."""

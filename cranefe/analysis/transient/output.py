@@ -1,15 +1,11 @@
 """Presentation of a TransientResult: JSON document, terminal table, CSV, PNG plots."""
 
 import csv
-import math
 import os
 
 import numpy as np
 
-
-def _num(x):
-    x = float(x)
-    return x if math.isfinite(x) else None
+from ..jsonable import num
 
 
 def document(result):
@@ -19,25 +15,25 @@ def document(result):
     drums = {}
     for k, name in enumerate(r.drum_names):
         drums[name] = {"drive": r.drum_drive[k],
-                       "speed_final_rad_s": _num(r.drum_speed[-1, k]),
-                       "speed_max_rad_s": _num(np.abs(r.drum_speed[:, k]).max()),
-                       "torque_max_N_m": _num(r.drum_torque[:, k].max()),
-                       "torque_min_N_m": _num(r.drum_torque[:, k].min())}
+                       "speed_final_rad_s": num(r.drum_speed[-1, k]),
+                       "speed_max_rad_s": num(np.abs(r.drum_speed[:, k]).max()),
+                       "torque_max_N_m": num(r.drum_torque[:, k].max()),
+                       "torque_min_N_m": num(r.drum_torque[:, k].min())}
     return {
         "model": r.model_name, "scene": r.scene, "method": r.method,
         "initial": r.initial, "effects": r.effects, "dofs": r.dofs,
-        "duration_s": _num(r.duration), "time_step_s": _num(r.time_step),
+        "duration_s": num(r.duration), "time_step_s": num(r.time_step),
         "steps": r.steps, "modes": r.modes if r.method == "modal" else None,
-        "highest_frequency_hz": _num(r.highest_frequency_hz),
-        "dynamic_factor": {n: _num(v) for n, v in zip(ropes, r.dynamic_factor)},
-        "rope_force_max_N": {n: _num(v) for n, v in zip(ropes, r.rope_force_max)},
-        "rope_force_max_time_s": {n: _num(v) for n, v in zip(ropes, r.rope_force_max_time)},
-        "rope_force_static_N": {n: _num(v) for n, v in zip(ropes, r.rope_force_static)},
-        "lift_off_time_s": _num(r.lift_off_time),
-        "lift_off_times_s": {n: _num(v) for n, v in zip(r.ground_names, r.lift_off_times)},
+        "highest_frequency_hz": num(r.highest_frequency_hz),
+        "dynamic_factor": {n: num(v) for n, v in zip(ropes, r.dynamic_factor)},
+        "rope_force_max_N": {n: num(v) for n, v in zip(ropes, r.rope_force_max)},
+        "rope_force_max_time_s": {n: num(v) for n, v in zip(ropes, r.rope_force_max_time)},
+        "rope_force_static_N": {n: num(v) for n, v in zip(ropes, r.rope_force_static)},
+        "lift_off_time_s": num(r.lift_off_time),
+        "lift_off_times_s": {n: num(v) for n, v in zip(r.ground_names, r.lift_off_times)},
         "drums": drums,
-        "energy_error": _num(r.energy_error),
-        "energy_J": {k: _num(v) for k, v in r.energy.items()},
+        "energy_error": num(r.energy_error),
+        "energy_J": {k: num(v) for k, v in r.energy.items()},
         "events": r.events[:100], "events_total": len(r.events),
         "timings_s": {k: round(v, 6) for k, v in r.timings.items()},
         "warnings": list(r.warnings),

@@ -62,6 +62,11 @@ class TransientResult:
     status: int = 0
     message: str = "ok"
 
+    def to_dict(self):
+        """The JSON document of ``cranefe simulate --json`` (docs/transient.md)."""
+        from .output import document
+        return document(self)
+
 
 def hermite_peaks(S0, S1, d0, d1, h):
     """Largest value of the cubic Hermite interpolants through (S0, d0) and (S1, d1)
