@@ -21,6 +21,11 @@ MODEL_KEYS = {"cranefe", "name", "plane", "gravity", "nodes", "ground", "masses"
               "linear_drives", "effects"}
 SCENE_KEYS = {"cranefe", "scene", "model", "effects", "analysis"}
 JOINT_TYPES = ("fixed", "hinge", "ball", "slider")
+# Limits on what a file can ask for, checked before anything is allocated
+# (docs/model-format.md, "Checks and exit status"; docs/security.md)
+MAX_FALLS = 1000              # parallel falls of one tackle (real ones have up to ~30)
+MAX_ROPE_ELEMENTS = 10_000    # rope_mass: elements per fall
+MAX_ROPE_ELEMENTS_TOTAL = 2_000_000   # rope_mass x every fall of every rope with mass
 ANALYSIS_TYPES = ("modes", "damping", "transient", "luffing")
 
 
@@ -70,13 +75,29 @@ def build(model_data, model_file, model_text="", scene_data=None, scene_file=Non
     """A checked `Model` from raw data (see `read_raw`)."""
     model = _build_model(model_data, model_file, model_text, _Reader(model_file))
     if scene_data is None:
+        _check_size(model, model_file)
         return model
     r = _Reader(scene_file)
     effects = _effects(scene_data.get("effects"), model.effects, r, "effects")
     analysis = _analysis(scene_data.get("analysis", {}), r)
     scene = scene_data.get("scene")
-    return _replace(model, effects=effects, analysis=analysis, scene_file=scene_file,
-                    scene=str(scene) if scene is not None else os.path.basename(scene_file))
+    model = _replace(model, effects=effects, analysis=analysis, scene_file=scene_file,
+                     scene=str(scene) if scene is not None else os.path.basename(scene_file))
+    _check_size(model, scene_file if "effects" in scene_data else model_file)
+    return model
+
+
+def _check_size(model, file):
+    """Rope elements asked for (rope_mass x every fall of every rope with mass) are
+    bounded before any is made."""
+    n = model.effects.rope_mass
+    if n:
+        falls = sum(int(r.falls.sum()) for r in model.ropes if r.mass_per_length > 0)
+        if n * falls > MAX_ROPE_ELEMENTS_TOTAL:
+            raise ModelError(
+                f"rope_mass: {n} elements per fall on {falls} falls make {n * falls:,} rope "
+                f"elements, more than the limit of {MAX_ROPE_ELEMENTS_TOTAL:,}; ask for fewer "
+                "elements per fall", file, "effects.rope_mass")
 
 
 def _is_scene(data):
@@ -116,7 +137,8 @@ def _effects(raw, base, r, entry):
         if key in ("rope_elasticity", "sway"):
             values[key] = r.boolean(value, e)
         elif key == "rope_mass":
-            values[key] = r.integer(value, e, minimum=0)
+            values[key] = r.integer(value, e, minimum=0, maximum=MAX_ROPE_ELEMENTS,
+                                    why=": elements per fall of every rope with mass")
         else:
             if value not in EFFECT_CHOICES[key]:
                 raise ModelError(f"{value!r} is not one of {', '.join(EFFECT_CHOICES[key])}",
@@ -171,7 +193,8 @@ class _Reader:
             self.fail(entry, f"must not be negative (found {v:g}); give a value >= 0")
         return v
 
-    def integer(self, v, entry, minimum=None):
+    def integer(self, v, entry, minimum=None, maximum=None, why=""):
+        """A whole number in [minimum, maximum]; `why` says what the maximum bounds."""
         if isinstance(v, bool) or not isinstance(v, int):
             if isinstance(v, float) and v.is_integer():
                 v = int(v)
@@ -179,6 +202,8 @@ class _Reader:
                 self.fail(entry, f"must be a whole number, not {_kind(v)} {v!r}")
         if minimum is not None and v < minimum:
             self.fail(entry, f"must be at least {minimum} (found {v})")
+        if maximum is not None and v > maximum:
+            self.fail(entry, f"must be at most {maximum:,} (found {_short(v)}){why}")
         return v
 
     def boolean(self, v, entry):
@@ -219,6 +244,13 @@ class _Reader:
             if not isinstance(k, str):
                 self.fail(entry, f"names must be text, not {_kind(k)} {k!r}")
         return v
+
+
+def _short(v):
+    """A number for a message, at most a few dozen characters (a 400-digit integer is
+    not echoed whole)."""
+    s = str(v)
+    return s if len(s) <= 24 else f"{s[:6]}...({len(s)} digits)"
 
 
 def _kind(v):
@@ -654,7 +686,8 @@ def _rope(name, rp, r, names, coords, scale, node_names, drums):
         n = 1
         if isinstance(entry, dict):
             r.keys(entry, pe, {"node", "falls"}, required=("node", "falls"))
-            n = r.integer(entry["falls"], f"{pe}.falls", minimum=1)
+            n = r.integer(entry["falls"], f"{pe}.falls", minimum=1, maximum=MAX_FALLS,
+                          why=": the parallel falls of one tackle")
             if k == 0:
                 r.fail(pe, "a tackle needs a previous point; the first entry is the rope's end")
             p = ("node", names.get(entry["node"], "node", f"{pe}.node")[1])

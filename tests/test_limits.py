@@ -1,0 +1,42 @@
+"""What a file can ask for is bounded before anything is allocated (issue 15): a tackle
+of a billion falls, a billion rope elements per fall, or millions of rope elements in
+all are refused with the entry and the limit, exit status 2, no traceback."""
+
+from pathlib import Path
+
+import pytest
+
+from cranefe.cli import main
+from cranefe.model.load import MAX_FALLS, MAX_ROPE_ELEMENTS, MAX_ROPE_ELEMENTS_TOTAL
+
+BASE = (Path(__file__).resolve().parents[1] / "models" / "two_mass_hoist.yaml").read_text()
+CASES = {
+    "falls": (BASE.replace("{node: H, falls: 2}", "{node: H, falls: 1000000000}"),
+              "ropes.hoist_rope.path[2].falls", f"at most {MAX_FALLS:,}"),
+    "rope_mass": (BASE.replace("cranefe: 1", "cranefe: 1\neffects: {rope_mass: 100000000}"),
+                  "effects.rope_mass", f"at most {MAX_ROPE_ELEMENTS:,}"),
+    "total": (BASE.replace("cranefe: 1", "cranefe: 1\neffects: {rope_mass: 5000}")
+              .replace("{node: H, falls: 2}", "{node: H, falls: 500}"),
+              "effects.rope_mass", f"limit of {MAX_ROPE_ELEMENTS_TOTAL:,}"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_limits_refused(name, tmp_path, capsys):
+    text, entry, says = CASES[name]
+    f = tmp_path / "m.yaml"
+    f.write_text(text)
+    assert main(["modes", str(f)]) == 2
+    err = capsys.readouterr().err
+    assert entry in err and says in err and "Traceback" not in err
+
+
+def test_scene_effects_are_bounded_too(tmp_path, capsys):
+    """The total is checked with the effects a scene sets, naming the scene's entry."""
+    (tmp_path / "m.yaml").write_text(BASE.replace("{node: H, falls: 2}",
+                                                  "{node: H, falls: 500}"))
+    scene = tmp_path / "s.yaml"
+    scene.write_text("cranefe: 1\nscene: s\nmodel: m.yaml\neffects: {rope_mass: 5000}\n")
+    assert main(["modes", str(scene)]) == 2
+    err = capsys.readouterr().err
+    assert "s.yaml" in err and "effects.rope_mass" in err
