@@ -81,7 +81,8 @@ def test_single_dof_free_decay_reproduces_psi():
     assert r.exact_damped_omega[0] == pytest.approx(r.damped_omega[0], rel=1e-12)
     # free decay x(t) = e^{At} x0, measured over one damped period: the log decrement
     lam = -zeta * w + 1j * r.exact_damped_omega[0]
-    A = np.array([[0.0, 1.0], [-k / m, -equivalent_viscous(psi, k, w) / m]])
+    b = psi * k / (2 * np.pi * w)                # eq. 12 by hand, not the code's
+    A = np.array([[0.0, 1.0], [-k / m, -b / m]])
     Td = 2 * np.pi / lam.imag
     x = sla.expm(A * Td) @ np.array([1.0, 0.3])
     delta = np.log(1.0 / x[0])
@@ -279,7 +280,7 @@ def test_polyharmonic_k1_equates_dissipated_power():
     assert polyharmonic_k1([1.0], [7.0]) == 1.0
     a, w, psi, c = np.array([1.0, 0.4, 0.1]), np.array([2.0, 9.0, 31.0]), 0.3, 5.0e4
     k1 = polyharmonic_k1(a, w)
-    b = equivalent_viscous(psi, c, w[0], k1)              # Heletiy (2016) eq. 13
+    b = psi * c / (2 * np.pi * w[0] * k1)                 # Heletiy (2016) eq. 13
     # the dashpot's power over a whole number of common periods (2 pi) equals the
     # absorbed power, psi times the peak strain energy once per cycle of each harmonic
     t = np.linspace(0, 2 * np.pi, 200_001)[:-1]
