@@ -229,7 +229,7 @@ def check_validation(files):
             assert num(err) == pytest.approx(known[0], rel=0.04), r
         elif r["kind"] == "closed form":
             assert err == "< 1e-11", r              # exact up to round-off
-        elif err != "missing":
+        elif not err.startswith("missing"):      # an optional peer not installed
             assert num(err) < 1e-10 if err[0] != "<" else True, r
 
 
