@@ -76,6 +76,51 @@ def test_coupling_of_a_close_pair_from_its_closed_form():
                                rtol=1e-10)
 
 
+COUPLED_PAIR = """cranefe: 1
+name: two close oscillators
+plane: xz
+nodes: {G1: [0, 0, 0], A: [0, 0, 1], B: [0, 0, 2], G2: [0, 0, 3]}
+ground: [G1, G2]
+masses: {A: 1000, B: 1000}
+springs:
+  - {name: ka, type: axial, nodes: [G1, A], stiffness: 1.0e6, psi: 0.0}
+  - {name: kb, type: axial, nodes: [B, G2], stiffness: 1.01e6, psi: 0.6}
+  - {name: kab, type: axial, nodes: [A, B], stiffness: 1.0e4, psi: 0.0}
+effects: {sway: false, damping: modal}
+"""
+
+
+def test_coupling_of_a_pair_with_one_absorber_from_its_closed_form():
+    """The damping scene of test_damping.py (`modes --count 1` once missed its partner):
+    vertical oscillators of 1000 kg, k_a = 1e6 (psi 0), k_b = 1.01e6 (psi 0.6), joined by
+    1e4 (psi 0); sway off, so gravity adds no stiffness.
+
+    M^-1 K = [[1010, -10], [-10, 1020]]: w^2 = 1015 -+ sqrt(125), w_1^2 - w_2^2 = -2 sqrt(125)
+    = -10 sqrt(5). The lower mode has y / x = (w_1^2 - 1010) / (-10) = (sqrt(5) - 1) / 2 =
+    tan(theta), so cos(2 theta) = 1 / sqrt(5), sin(2 theta) = 2 / sqrt(5). Only k_b (on B's
+    coordinate) absorbs: with h = psi_b k_b / (2 pi m) = 606 / (2 pi),
+    H = h [[s^2, s c], [s c, c^2]], H_22 - H_11 = h cos(2 theta) = h / sqrt(5),
+    |H_12| = h sin(2 theta) / 2 = h / sqrt(5), so
+
+        eps_12 = (h / sqrt(5)) / sqrt(500 + h^2 / 5) = h / sqrt(2500 + h^2) = 0.88779
+
+    and without the i (H_ii - H_jj) term h / 50 = 1.929. Tolerance 1e-10 (round-off).
+    """
+    h = mp.mpf(606) / (2 * mp.pi)
+    eps = h / mp.sqrt(2500 + h**2)
+    assert float(eps) == pytest.approx(0.887792, abs=1e-6)
+    r = damping(load("coupled.yaml", COUPLED_PAIR), method="modal")
+    np.testing.assert_allclose(r.omega**2, [float(1015 - mp.sqrt(125)),
+                                            float(1015 + mp.sqrt(125))], rtol=1e-13)
+    assert r.coupling_matrix[0, 1] == pytest.approx(float(eps), rel=1e-10)
+    assert r.coupling_matrix[1, 0] == pytest.approx(float(eps), rel=1e-10)
+    # zeta_i = H_ii / (2 w_i^2), s^2 = (1 - 1/sqrt 5) / 2, c^2 = (1 + 1/sqrt 5) / 2
+    s2, c2 = (1 - 1 / mp.sqrt(5)) / 2, (1 + 1 / mp.sqrt(5)) / 2
+    np.testing.assert_allclose(r.zeta, [float(h * s2 / (2 * (1015 - mp.sqrt(125)))),
+                                        float(h * c2 / (2 * (1015 + mp.sqrt(125))))],
+                               rtol=1e-10)
+
+
 TRIPLE = """cranefe: 1
 plane: xz
 gravity: [0, 0, 0]
