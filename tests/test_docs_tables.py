@@ -93,3 +93,36 @@ def test_damping_table_is_the_csv():
     ("-1.2e-3", -0.00115157, True), ("12", 12.4, True), ("12", 12.6, False)])
 def test_agrees_reads_the_quoted_digits(quoted, value, ok):
     assert agrees(quoted, value) is ok
+
+
+def quoted_after(phrase):
+    """The number right after `phrase` in docs/accuracy.md (e.g. 'within ' -> '3.0e-4')."""
+    text = " ".join(open(DOC).read().split())
+    m = re.search(re.escape(phrase) + r"\s*\(?(-?[0-9][0-9.]*(?:e-?[0-9]+)?)", text)
+    assert m, phrase
+    return m.group(1)
+
+
+def test_prose_figures_are_the_csvs():
+    # rope orders: "Fitted order 2.00 in every case" (first mode)
+    orders = [float(r["order_mode1"]) for r in results("rope_convergence_orders.csv")]
+    assert all(agrees(quoted_after("Fitted order"), o) for o in orders)
+    # transients: the direct runs' largest error up to 2e-2 s, the fine steps' errors,
+    # modal superposition with 2 modes and from 8 modes (static correction)
+    rows = [r for r in results("transient_cost.csv") if r["case"] == "hoist_start"]
+    direct = {float(r["time_step_s"]): float(r["error"]) for r in rows
+              if r["method"] == "direct"}
+    assert agrees(quoted_after("fall) is within"), max(e for h, e in direct.items() if h <= 0.02))
+    assert agrees(quoted_after("2e-2 s (not monotonically: where the peak falls between "
+                               "steps matters), and within"),
+                  max(e for h, e in direct.items() if h <= 2e-4))
+    modal = {int(r["modes"]): float(r["error"]) for r in rows
+             if r["method"] == "modal" and r["static_correction"] == "true"}
+    assert agrees(quoted_after("the rigid mode and the hoisting mode"), modal[2])
+    fine = float(quoted_after("reaches the fine step's error"))
+    assert all(agrees(str(fine), e) for k, e in modal.items() if k >= 8)
+    # luffing: quadrature m = 16 and Chebyshev collocation n = 10
+    luff = {r["method"]: r for r in results("luffing_cost.csv")}
+    assert agrees(quoted_after("quadrature ("), float(luff["quadrature m=16"]["error_rad"]))
+    assert agrees(quoted_after("Chebyshev collocation n = 10 gives"),
+                  float(luff["collocation, Chebyshev n=10"]["error_rad"]))
