@@ -126,3 +126,15 @@ def test_prose_figures_are_the_csvs():
     assert agrees(quoted_after("quadrature ("), float(luff["quadrature m=16"]["error_rad"]))
     assert agrees(quoted_after("Chebyshev collocation n = 10 gives"),
                   float(luff["collocation, Chebyshev n=10"]["error_rad"]))
+
+
+def test_validation_page_is_the_csv():
+    """docs/validation.md and results/validation.csv come from one run of `cranefe study
+    validation`: the same rows, peers that were missing included."""
+    rows = results("validation.csv")
+    md = [line for line in open(os.path.join(ROOT, "docs", "validation.md"))
+          if line.startswith("| ") and not line.startswith("| case |")]
+    assert [[c.strip() for c in line.strip().strip("|").split("|")] for line in md] == \
+        [[r["case"], r["kind"], r["reference"], r["max_relative_error"]] for r in rows]
+    assert any("vs OpenSeesPy" in r["case"] for r in rows)         # present or missing
+    assert any("vs Exudyn" in r["case"] for r in rows)
