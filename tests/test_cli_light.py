@@ -4,6 +4,8 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HEAVY = ("pyvista", "vtk", "h5py", "meshio", "matplotlib")
 
@@ -19,10 +21,12 @@ def test_modes_imports_nothing_heavy():
     assert out.strip() == "0 []"
 
 
-def test_help_and_version():
+def test_help_and_version(capsys):
+    from cranefe import __version__
     from cranefe.cli import main
     assert main([]) == 2
-    try:
+    assert "usage: cranefe" in capsys.readouterr().out      # help on stdout, status 2
+    with pytest.raises(SystemExit) as exc:          # argparse's version action exits
         main(["--version"])
-    except SystemExit as exc:
-        assert exc.code == 0
+    assert exc.value.code == 0
+    assert capsys.readouterr().out.strip() == f"cranefe {__version__}"
