@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from cranefe.model import load
-from cranefe.modal import modes
+from cranefe.analysis.modal import modes
 from cranefe.statics import solve_static
 from cranefe.studies import validation
 

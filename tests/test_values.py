@@ -13,12 +13,12 @@ import pytest
 import scipy.linalg as sla
 import yaml
 
-from cranefe.assemble import assemble
-from cranefe.damping import damping, element_frequencies
-from cranefe.luffing.analysis import Luffing, read_scene
-from cranefe.modal import modes
+from cranefe.system import assemble
+from cranefe.analysis.damping import damping, element_frequencies
+from cranefe.analysis.luffing.analysis import Luffing, read_scene
+from cranefe.analysis.modal import modes
 from cranefe.model import load
-from cranefe.transient.integrate import simulate
+from cranefe.analysis.transient.integrate import simulate
 
 G = 9.81
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

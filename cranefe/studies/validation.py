@@ -205,6 +205,9 @@ def exudyn_omega(text):
     constraints). Exudyn linearises its nonlinear equations there, so its stiffness holds
     the ropes' tension stiffness and the bodies' load stiffness by construction.
     Raises ImportError without Exudyn.
+
+    Length: an independent peer program (equilibrium, Exudyn model, linearisation) kept
+    in one piece so that it reads as the peer's script, sharing nothing with cranefe.
     """
     import exudyn as exu
     import yaml
