@@ -10,9 +10,10 @@ element arrays. Nothing here sees a `Model`, a DOF map or a global index: assemb
 
 from .beams import beam_axes, beam_geometric, beam_mass, beam_stiffness, to_global
 from .bodies import load_stiffness, rigid_mass, skew
-from .ropes import (RopeForce, elongation_rows, rope_force, rope_mass, span_geometry,
-                    string_stiffness)
+from .ropes import (RopeForce, elongation_rows, hencky_energy, hencky_tension, rope_force,
+                    rope_mass, span_geometry, string_stiffness)
 
 __all__ = ["beam_axes", "beam_geometric", "beam_mass", "beam_stiffness", "to_global",
            "load_stiffness", "rigid_mass", "skew", "elongation_rows", "rope_mass",
-           "span_geometry", "string_stiffness", "rope_force", "RopeForce"]
+           "span_geometry", "string_stiffness", "rope_force", "RopeForce",
+           "hencky_tension", "hencky_energy"]

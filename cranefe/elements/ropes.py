@@ -60,7 +60,7 @@ class RopeForce:
     e: np.ndarray        # (ns, 3) unit vector of each span, from a to b
     l: np.ndarray        # (ns,) span lengths
     grad: np.ndarray     # (ns, 6) dL/d(x_a, x_b) of each span: f [-e, e]
-    c: np.ndarray        # (nr,) axial stiffness EA / L0 of taut ropes, 0 where slack
+    c: np.ndarray        # (nr,) axial stiffness dS/dL = EA / L of taut ropes, 0 if slack
 
     def span_force(self, rope):
         """(ns, 6) generalised force -S dL/dx on (x_a, x_b) of every span."""
@@ -69,6 +69,22 @@ class RopeForce:
     def geometric(self, rope, falls):
         """(ns, 6, 6) tension stiffness S dr/dx of every span (string_stiffness)."""
         return string_stiffness(self.S[rope], falls, self.e, self.l)
+
+
+def hencky_tension(EA, L, L0):
+    """Rope force S = EA ln(L / L0) (logarithmic strain) and its tangent dS/dL = EA / L.
+
+    To first order in the strain this is EA (L - L0) / L0; its tangent in the current
+    length, EA / L, is the stiffness c = EA / L that the linear core gives a rope whose
+    reference (stretched) length is L (Heletiy 2016, eq. 5), so linearising the large-
+    motion engine at the static state gives the linear core's K exactly
+    (docs/operations.md, "Rope law")."""
+    return EA * np.log(L / L0), EA / L
+
+
+def hencky_energy(EA, L, L0):
+    """Elastic energy of a rope with S = EA ln(L/L0): U = EA (L ln(L/L0) - L + L0) >= 0."""
+    return EA * (L * np.log(L / L0) - L + L0)
 
 
 def rope_force(x, span_a, span_b, falls, rope, EA, L0, extra=0.0):
@@ -81,16 +97,17 @@ def rope_force(x, span_a, span_b, falls, rope, EA, L0, extra=0.0):
 
     The length of a rope is L(x) = sum_k f_k |x_b,k - x_a,k| + extra (design.md, "Large
     motions"; Heletiy 2016 eq. 2-3 is its linearisation); its tension is
-    S = EA (L - L0) / L0 when L > L0 and 0 otherwise (a rope cannot push); the gradient of L
-    is the elongation row r(x), and the tangent stiffness EA / L0 r r^T + S dr/dx splits
-    into `c` (taut ropes) and `geometric` (the tension stiffness of every span). The linear
-    core calls this at the reference positions, the large-motion engine at every step.
+    S = EA ln(L / L0) when L > L0 and 0 otherwise (a rope cannot push; `hencky_tension`);
+    the gradient of L is the elongation row r(x), and the tangent stiffness
+    c r r^T + S dr/dx splits into `c` (taut ropes) and `geometric` (the tension stiffness
+    of every span). The linear core calls this at the reference positions for its rows
+    and lengths; the large-motion engine at every step.
     """
     e, l = span_geometry(x, span_a, span_b)
     falls = np.asarray(falls, dtype=float)
     L = np.bincount(rope, weights=falls * l, minlength=len(L0)) + extra
-    stretch = (L - L0) / L0
-    taut = stretch > 0
-    S = np.where(taut, EA * stretch, 0.0)
+    taut = L > L0
+    S, c = hencky_tension(EA, L, np.where(taut, L0, L))
     fe = falls[:, None] * e
-    return RopeForce(L, S, e, l, np.hstack([-fe, fe]), np.where(taut, EA / L0, 0.0))
+    return RopeForce(L, np.where(taut, S, 0.0), e, l, np.hstack([-fe, fe]),
+                     np.where(taut, c, 0.0))
