@@ -373,3 +373,11 @@ def test_pendulum_longer_than_the_model(tmp_path):
     w = plausibility.warnings(m, omega=np.array([0.01, math.sqrt(9.81 / 10)]))
     assert len(w) == 1 and "pendulum 9.81e+04 m long" in w[0], w
     assert plausibility.warnings(m, omega=np.array([math.sqrt(9.81 / 10)])) == []
+
+
+@pytest.mark.parametrize("text", ["1 " + " " * 10**6 + "N", "1 " + "m * " * 10**5 + "#",
+                                  "1 " + "m * " * 12 + "#"])
+def test_long_or_tangled_text_is_refused_at_once(text):
+    # the unit is matched by one separator per name (linear); text is bounded in length
+    with pytest.raises(ModelError, match="ropes.r.EA"):
+        _Reader("m.yaml").number(text, "ropes.r.EA")

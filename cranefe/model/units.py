@@ -49,12 +49,12 @@ _TARGET_NAMES = {"N*m": "a torque", "N*m/rad": "a rotational stiffness",
 _SHOWN = {"kg*m^2": "kg m^2", "N*m": "N m", "N*m/rad": "N m/rad", "": "no unit"}
 
 _NUMBER = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$")
-# a unit: names joined by spaces, * and /, with small integer powers (no numbers
-# elsewhere: pint would evaluate them, and 10**10**10 must not reach it)
-_UNIT = re.compile(r"(?:1\s*/\s*)?[A-Za-z_%°µμΩ][A-Za-z0-9_%°µμΩ]*"
-                   r"(?:\s*(?:\^|\*\*)\s*[+-]?\d)?"
-                   r"(?:\s*[*/ ]\s*\(?\s*[A-Za-z_%°µμΩ][A-Za-z0-9_%°µμΩ]*"
-                   r"(?:\s*(?:\^|\*\*)\s*[+-]?\d)?\s*\)?)*")
+# a unit, once its spacing is normalised (`_normal`): names joined by one space, * or /,
+# with powers of one digit (no numbers elsewhere: pint would evaluate them, and
+# 10**10**10 must not reach it). Every repetition starts with one separator, so the
+# match is linear in the length of the text.
+_NAME = r"\(?[A-Za-z_%°µμΩ][A-Za-z0-9_%°µμΩ]*(?:\^[+-]?\d)?\)?"
+_UNIT = re.compile(rf"(?:1/)?{_NAME}(?:[*/ ]{_NAME})*")
 _SUPERSCRIPTS = {"²": "^2", "³": "^3", "⁴": "^4", "·": "*", "⋅": "*", "−": "-"}
 MAX_TEXT = 64
 _registry = None
@@ -88,7 +88,7 @@ def expected_unit(entry):
 
 def has_unit(text):
     """True if `text` looks like a number followed by a unit (not a bare number)."""
-    m = _NUMBER.match(text)
+    m = _NUMBER.match(text[:4 * MAX_TEXT])       # longer text: refused by `convert`
     return bool(m and m.group(2))
 
 
@@ -109,9 +109,7 @@ def convert(text, entry, file, unit=None, drums=None):
     if unit is None:
         raise ModelError(f"must be a number, not text '{where}'; this entry takes a plain "
                          "number without quotes or units", file, entry)
-    clean = m.group(2) if m else ""
-    for k, v in _SUPERSCRIPTS.items():
-        clean = clean.replace(k, v)
+    clean = _normal(m.group(2)) if m else ""
     if not m or not _UNIT.fullmatch(clean):
         raise ModelError(f"must be a number, or a number with a unit: cannot read "
                          f"'{where}'; write e.g. "
@@ -146,6 +144,15 @@ def convert(text, entry, file, unit=None, drums=None):
         raise ModelError(f"{where}: Hz is ambiguous for an angular quantity (a cycle per "
                          "second is 2 pi rad/s); write rpm or rad/s", file, entry)
     return _finite(q.to(target).magnitude, text, entry, file)
+
+
+def _normal(unit):
+    """``'kg · m²'`` -> ``'kg*m^2'``: superscripts and dots written out, no spaces around
+    operators, single spaces between names."""
+    for k, v in _SUPERSCRIPTS.items():
+        unit = unit.replace(k, v)
+    unit = re.sub(r"\s*([*/^()])\s*", r"\1", unit.replace("**", "^"))
+    return re.sub(r"\s+", " ", unit).strip()
 
 
 def _drum_radius(entry, unit, drums):
