@@ -1,4 +1,5 @@
-"""`cranefe modes` stays light: no plotting or file-format library is imported for it."""
+"""`cranefe modes` stays light: no plotting, file-format or units library is imported for
+a file without units."""
 
 import os
 import subprocess
@@ -7,7 +8,7 @@ import sys
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-HEAVY = ("pyvista", "vtk", "h5py", "meshio", "matplotlib")
+HEAVY = ("pyvista", "vtk", "h5py", "meshio", "matplotlib", "pint")   # pint: only for units
 
 
 def test_modes_imports_nothing_heavy():

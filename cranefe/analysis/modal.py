@@ -17,6 +17,7 @@ import scipy.sparse.linalg as spla
 from ..system import assemble
 from ..condense import DENSE_MAX, condense, massless_split, no_inertia
 from ..errors import AnalysisError
+from ..model import plausibility
 from .jsonable import num, timings
 
 SMALL = 300        # below this many coordinates the dense solution is the fastest
@@ -118,6 +119,8 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
         slack = [f"rope {r.name} has no tension ({S:.3g} N) somewhere in the static state"
                  for r, (S, _) in zip(model.ropes, system.static.rope_tension()) if S <= 0]
         result.warnings.extend(slack)
+    tension = system.static.rope_tension() if system.static is not None else None
+    result.warnings.extend(plausibility.warnings(model, tension, omega[~np.asarray(rigid)]))
     return result
 
 

@@ -16,7 +16,9 @@ def run(args):
 
     from ..system import assemble
     from ..condense import DENSE_MAX, condense
-    from ..model import load
+    from ..model import load, plausibility
+    from ..model.load import _Reader, read_raw
+    from ..model.ropes_data import designations
     from ..outputs.report import dumps
     from ..statics import solve_static
     model = load(args.file)
@@ -42,6 +44,11 @@ def run(args):
             warnings.append(f"rope {r.name} is slack in the static state "
                             f"({tension[k, 0]:.4g} N)")
         elements.append(e)
+    derived = designations(read_raw(model.file)[0], _Reader(model.file))
+    for e, r in zip(elements, model.ropes):
+        if r.name in derived:
+            e["designation"] = derived[r.name]
+    warnings += plausibility.warnings(model, tension)
     for k, s in enumerate(model.springs):
         row = int(np.flatnonzero(sp.spring == k)[0])
         elements.append({"name": f"spring {s.name}", "stiffness": float(sp.c[row]),
@@ -64,6 +71,13 @@ def run(args):
     if args.json:
         print(dumps(doc))
         return 0
+    _print(model, doc)
+    return 0
+
+
+def _print(model, doc):
+    """The human-readable report of `run`'s document."""
+    qc, massless = doc["quasi_cyclic"], doc["massless_condensed"]
     eff = ", ".join(f"{k}={v}" for k, v in doc["effects"].items())
     print(f"{model.name} ({'planar x-z' if model.planar else '3D'}): {doc['dofs']} "
           f"coordinates; effects: {eff}")
@@ -77,7 +91,7 @@ def run(args):
     if doc["constraints"]:
         print(f"  constraints: {', '.join(doc['constraints'])}")
     print(f"  {'element':<28} {'length [m]':>11} {'stiffness':>12} {'static force':>13}")
-    for e in elements:
+    for e in doc["elements"]:
         length = f"{e['length_m']:.4g}" if "length_m" in e else "-"
         unit = "N m/rad" if e["name"].startswith("spring") and "length_m" not in e else "N/m"
         force = f"{e['static_force']:>13.5g}"
@@ -88,6 +102,20 @@ def run(args):
               f"  ({unit})")
         if "path" in e:
             print(f"    path: {' - '.join(e['path'])} ({e['falls']} rope parts)")
-    for w in warnings:
+        if "designation" in e:
+            print(f"    {_designation(e['designation'])}")
+    for w in doc["warnings"]:
         print(f"  warning: {w}")
-    return 0
+
+
+def _designation(d):
+    """One line: what a rope's diameter and construction gave (cranefe.model.ropes_data)."""
+    own = [k for k, f in (("EA", "EA_from"), ("mass_per_length", "mass_from"))
+           if d[f] == "given"]
+    return (f"designation: {d['diameter_m'] * 1e3:g} mm {d['class']} {d['core']} "
+            f"(EN 12385-4): metallic area {d['metallic_area_m2'] * 1e6:.4g} mm^2 "
+            f"(fill factor {d['fill_factor']:.3f}), EA {d['EA_N']:.4g} N (modulus "
+            f"{d['modulus_pa'] / 1e9:.4g} GPa, {d['modulus_from']}), "
+            f"{d['mass_per_length_kg_m']:.4g} kg/m, minimum breaking force "
+            f"{d['min_breaking_force_N'] / 1e3:.4g} kN (grade 1770)"
+            + (f"; your own {' and '.join(own)} used" if own else ""))

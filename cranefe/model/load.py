@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ModelError
+from . import ropes_data, units
 from .model import (EFFECT_CHOICES, GROUND, Body, Drum, Effects, Joint, LinearDrive,
                     Member, Model, PointMasses, Rope, Spring)
 from .yamlio import read_yaml
@@ -150,8 +151,9 @@ def _effects(raw, base, r, entry):
 class _Reader:
     """Typed access to raw YAML values with messages that name the entry."""
 
-    def __init__(self, file):
+    def __init__(self, file, drums=None):
         self.file = file
+        self.drums = drums or {}      # drum name -> radius: rope speeds of scenes
 
     def fail(self, entry, message):
         raise ModelError(message, self.file, entry or None)
@@ -179,10 +181,14 @@ class _Reader:
             if k not in d:
                 self.fail(entry, f"missing required key '{k}'; add it")
 
-    def number(self, v, entry, positive=False, nonneg=False):
+    def number(self, v, entry, positive=False, nonneg=False, unit=None):
+        """A finite float; text with a unit ('110 MN') in the SI unit of `entry`
+        (cranefe.model.units; `unit` overrides its table)."""
+        if isinstance(v, str) and units.has_unit(v):
+            v = units.convert(v, entry, self.file, unit, drums=self.drums)
         if isinstance(v, bool) or not isinstance(v, (int, float)):
-            hint = "; write a plain number in SI units, e.g. 2.0e7, without quotes or " \
-                "units" if isinstance(v, str) else ""
+            hint = "; write a plain number in SI units, e.g. 2.0e7, without quotes, or " \
+                "a number with its unit, e.g. '110 MN'" if isinstance(v, str) else ""
             self.fail(entry, f"must be a number, not {_kind(v)} {v!r}{hint}")
         v = float(v)
         if not math.isfinite(v):
@@ -514,7 +520,8 @@ def _springs(data, c):
         e = f"springs.{sname}" if "name" in s else e
         r.keys(s, e, {"name", "type", "nodes", "bodies", "at", "axis", "stiffness", "psi"},
                required=("type", "stiffness"))
-        k_s = r.number(s["stiffness"], f"{e}.stiffness", positive=True)
+        k_s = r.number(s["stiffness"], f"{e}.stiffness", positive=True,
+                       unit="N*m/rad" if s["type"] == "rotational" else None)
         psi = r.number(s.get("psi", 0.0), f"{e}.psi", nonneg=True)
         if s["type"] == "axial":
             for bad in ("bodies", "axis"):
@@ -668,8 +675,9 @@ def _inertia(v, entry, planar, r, allow_zero):
 
 def _rope(name, rp, r, names, coords, scale, node_names, drums):
     e = f"ropes.{name}"
-    r.keys(rp, e, {"EA", "mass_per_length", "psi", "extra_length", "path"},
-           required=("EA", "path"))
+    r.keys(rp, e, {"EA", "mass_per_length", "psi", "extra_length", "path",
+                   *ropes_data.KEYS}, required=("path",))
+    EA, mass_per_length, _ = ropes_data.rope_values(rp, r, e)   # given, or by designation
     path = r.listing(rp["path"], f"{e}.path", min_len=2)
     points = []          # (kind, index) after tackle expansion
     span_a, span_b, falls = [], [], []
@@ -718,8 +726,7 @@ def _rope(name, rp, r, names, coords, scale, node_names, drums):
     ends = [points[0], points[-1]]
     end_drums = tuple(p[1] for p in ends if p[0] == "drum")
     return Rope(
-        name, r.number(rp["EA"], f"{e}.EA", positive=True),
-        r.number(rp.get("mass_per_length", 0.0), f"{e}.mass_per_length", nonneg=True),
+        name, EA, mass_per_length,
         r.number(rp.get("psi", 0.0), f"{e}.psi", nonneg=True),
         r.number(rp.get("extra_length", 0.0), f"{e}.extra_length", nonneg=True),
         np.array(span_a, dtype=int), np.array(span_b, dtype=int),

@@ -157,7 +157,7 @@ def parse(model):
     """The transient analysis of a scene `model`, checked."""
     a = model.analysis
     file = model.scene_file or model.file
-    r = _Reader(file)
+    r = _Reader(file, drums={d.name: d.radius for d in model.drums})
     r.keys(a, "analysis", KEYS)
     if a.get("type") != "transient":
         raise ModelError("this is not a transient scene: give analysis: {type: transient, "
