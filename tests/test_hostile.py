@@ -458,10 +458,15 @@ def test_bad_option_values(tmp_path, capsys, monkeypatch, argv, says):
 
 
 def test_generate_writes_atomically(tmp_path, capsys):
+    """A new file is renamed over the old name: another (hard) link to the old file
+    keeps the old content, which an in-place write would have changed."""
     out = tmp_path / "g.yaml"
     out.write_text("old")
+    os.link(out, tmp_path / "keep.yaml")
     assert cli(capsys, "generate", "tower-crane", "--dofs", "1", "--out", out)[0] == 0
-    assert out.read_text().startswith("# Lattice") and os.listdir(tmp_path) == ["g.yaml"]
+    assert out.read_text().startswith("# Lattice")
+    assert (tmp_path / "keep.yaml").read_text() == "old"
+    assert sorted(os.listdir(tmp_path)) == ["g.yaml", "keep.yaml"]
 
 
 def test_a_full_disk_on_stdout_is_one_line(tmp_path):
