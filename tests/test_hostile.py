@@ -28,7 +28,10 @@ ENV = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH
 
 
 def cli(capsys, *argv):
-    status = main([str(a) for a in argv])
+    try:
+        status = main([str(a) for a in argv])
+    except SystemExit as exc:                 # argparse refuses an option's value
+        status = exc.code
     out, err = capsys.readouterr()
     assert "Traceback" not in out + err
     return status, out, err
@@ -122,15 +125,29 @@ def test_outputs_are_refused_before_anything_is_computed(model, tmp_path, capsys
     assert set(os.listdir(tmp_path)) == before            # wrote nothing
 
 
-def test_a_device_is_never_replaced(model, capsys):
+def _devices(folder):
+    """Private device nodes (twins of /dev/null and /dev/full, as root) and a FIFO in
+    `folder`: a regression must never get to replace the machine's own /dev/null."""
+    made = []
+    for name, minor in (("null", 3), ("full", 7)):
+        try:
+            os.mknod(folder / name, 0o666 | stat.S_IFCHR, os.makedev(1, minor))
+            made.append(folder / name)
+        except (OSError, AttributeError):
+            pass
+    os.mkfifo(folder / "fifo")
+    return made + [folder / "fifo"]
+
+
+def test_a_device_is_never_replaced(model, tmp_path, capsys):
     m, _ = model
-    for dev in ("/dev/null", "/dev/full"):
-        if not os.path.exists(dev):
-            continue
-        mode = os.stat(dev).st_mode
+    for dev in _devices(tmp_path):
+        mode = os.lstat(dev).st_mode
         bad(capsys, "modes", m, "--archive", dev, says="not a regular file")
+        bad(capsys, "modes", m, "--vtu", dev,
+            says="not a regular file")
         bad(capsys, "generate", "tower-crane", "--out", dev, says="not a regular file")
-        assert stat.S_ISCHR(os.stat(dev).st_mode) and os.stat(dev).st_mode == mode
+        assert os.lstat(dev).st_mode == mode and not stat.S_ISREG(mode)
 
 
 def test_atomic_never_renames_over_a_device(tmp_path):

@@ -38,10 +38,7 @@ def _module(name):
 
 def main(argv=None):
     parser = _parser()
-    try:
-        args = parser.parse_args(argv)      # a bad option: usage and exit status 2
-    except SystemExit as exc:
-        return exc.code
+    args = parser.parse_args(argv)      # a bad option value: usage, SystemExit(2)
     args.argv = list(argv) if argv is not None else sys.argv[1:]
     if not args.command:
         parser.print_help()

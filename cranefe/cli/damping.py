@@ -5,7 +5,7 @@ stiffness). --method: modal (the estimate), exact or both (also the exact soluti
 auto (the estimate, solved exactly where the coupling criterion fails; the default).
 A scene sets the method by analysis.method or effects.damping."""
 
-from ._outputs import add_output_arguments, check_outputs, count_type, write_outputs
+from ._outputs import add_output_arguments, check_outputs, write_outputs
 
 HELP = "damping ratios from absorption coefficients (decoupled and exact)"
 
@@ -16,7 +16,7 @@ def add_arguments(p):
                    help="modal: decoupled estimate; exact / both: also the complex "
                    "eigensolutions; auto: exact where Hasselman's criterion fails "
                    "(default, or the scene's analysis.method / effects.damping)")
-    p.add_argument("--count", type=count_type(1), default=None,
+    p.add_argument("--count", type=int, default=None,
                    help="number of modes, rigid ones included (default: as cranefe modes, "
                    "or the scene's count)")
     p.add_argument("--json", action="store_true", help="print one JSON document")

@@ -1,13 +1,13 @@
 """Natural frequencies and mode shapes of a model or scene."""
 
-from ._outputs import add_output_arguments, check_outputs, count_type, write_outputs
+from ._outputs import add_output_arguments, check_outputs, write_outputs
 
 HELP = "natural frequencies and modes"
 
 
 def add_arguments(p):
     p.add_argument("file", help="model or scene file (YAML)")
-    p.add_argument("--count", type=count_type(1), default=None, help="number of modes (default: all "
+    p.add_argument("--count", type=int, default=None, help="number of modes (default: all "
                    "for small models, 10 for large ones, or the scene's count)")
     p.add_argument("--json", action="store_true", help="print one JSON document")
     p.add_argument("--solver", choices=("auto", "dense", "sparse"), default="auto")
@@ -21,6 +21,9 @@ def run(args):
     from ..report import dumps, modes_document, modes_table
     import time
     t0 = time.perf_counter()
+    if args.count is not None and args.count < 1:        # as `cranefe damping`
+        from ..errors import ModelError
+        raise ModelError(f"--count {args.count}: ask for at least one mode")
     model = load(args.file)
     t_load = time.perf_counter() - t0
     check_outputs(args, model)
