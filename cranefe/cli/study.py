@@ -11,7 +11,6 @@ def add_arguments(p):
 
 
 def run(args):
-    import os
     from importlib import import_module
 
     from ..outpaths import Plan, make_folder
