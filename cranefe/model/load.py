@@ -11,9 +11,9 @@ import os
 import numpy as np
 
 from ..errors import ModelError
+from ..outpaths import named_path, note_read
 from .model import (EFFECT_CHOICES, GROUND, Body, Drum, Effects, Joint, LinearDrive,
                     Member, Model, PointMasses, Rope, Spring)
-from ..outpaths import named_path, note_read
 from .yamlio import read_yaml
 
 MODEL_KEYS = {"cranefe", "name", "plane", "gravity", "nodes", "ground", "masses",

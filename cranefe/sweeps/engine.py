@@ -7,9 +7,9 @@ import os
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 
-from .evaluate import evaluate
 from ..errors import ModelError
 from ..outpaths import Plan
+from .evaluate import evaluate
 from .table import Journal, journal_path, read_journal, write_table
 
 CHUNK = 8            # variants per task: amortises the transfer of the base model
