@@ -10,10 +10,10 @@ PACKAGE = Path(__file__).resolve().parents[1] / "cranefe"
 
 # the pipeline in order (docs/theory.md, "Pipeline"); a module may import only from its
 # own stage or earlier ones
-STAGES = ("errors", "cases", "elements", "model", "coordinates", "assembly", "statics",
+STAGES = ("errors", "cases", "outpaths", "elements", "model", "coordinates", "assembly", "statics",
           "system", "condense", "analysis", "outputs", "sweeps", "api", "studies", "cli",
           "__main__")
-BASE = {"errors", "cases"}          # leaves anyone may use
+BASE = {"errors", "cases", "outpaths"}   # leaves anyone may use (outpaths: safe I/O)
 MAX_LINES = 80                      # a longer function gives its reason in its docstring
 REASON = "Length:"                  # ... in a line starting with this word
 
@@ -84,7 +84,9 @@ def test_elements_see_no_model():
 
 
 def test_no_import_cycles():
-    edges = graph()
+    """The package's root is left out: it holds the version and re-exports the API
+    lazily (on first attribute access), so modules that read `__version__` make no cycle."""
+    edges = {k: v - {"cranefe"} for k, v in graph().items() if k != "cranefe"}
     state, stack, cycles = {}, [], []
 
     def visit(n):

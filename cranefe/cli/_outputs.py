@@ -1,6 +1,35 @@
-"""Output options shared by the analysis commands: --archive, --vtu, --xdmf, --images."""
+"""Options shared by the commands: the outputs (--archive, --vtu, --xdmf, --images) and
+argument types that refuse bad values with a message naming the option (exit 2)."""
 
+import argparse
 import sys
+
+MAX_IMAGE_SIDE = 8192      # pixels: an off-screen render buffer of 8192^2 RGBA is 256 MB
+
+
+def count_type(minimum=1):
+    """An argparse type: a whole number >= minimum."""
+    def parse(text):
+        try:
+            v = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if v < minimum:
+            raise argparse.ArgumentTypeError(f"must be at least {minimum} (found {v})")
+        return v
+    parse.__name__ = "count"
+    return parse
+
+
+def seconds_type(text):
+    import math
+    try:
+        v = float(text)
+    except ValueError:
+        v = math.nan
+    if not 0 < v < 1e6:
+        raise argparse.ArgumentTypeError(f"{text!r}: give a time in seconds, > 0")
+    return v
 
 
 def add_output_arguments(p):
@@ -12,39 +41,71 @@ def add_output_arguments(p):
     g.add_argument("--images", metavar="DIR", help="render one PNG per mode (off-screen)")
     g.add_argument("--animate", action="store_true", help="with --images: a GIF per mode")
     g.add_argument("--image-size", metavar="WxH", default="1024x768",
-                   help="image size in pixels (default 1024x768)")
+                   help=f"image size in pixels (default 1024x768, at most "
+                   f"{MAX_IMAGE_SIDE} a side)")
 
 
 def _size(text):
     from ..errors import ModelError
     try:
         w, h = (int(v) for v in text.lower().split("x"))
-        if w < 16 or h < 16:
+        if not (16 <= w <= MAX_IMAGE_SIDE and 16 <= h <= MAX_IMAGE_SIDE):
             raise ValueError
     except ValueError:
-        raise ModelError(f"--image-size {text!r}: give WIDTHxHEIGHT in pixels, e.g. "
-                         "1024x768") from None
+        raise ModelError(f"give WIDTHxHEIGHT in pixels, each 16..{MAX_IMAGE_SIDE}, e.g. "
+                         "1024x768", None, f"--image-size {text!r}") from None
     return w, h
+
+
+FILE_OPTIONS = ("archive", "vtu", "xdmf", "csv")
+FOLDER_OPTIONS = ("images", "plots")
+
+
+def check_outputs(args, model=None):
+    """Check every output option of `args` against each other and against the files
+    this run read (`cranefe.outpaths.Plan`), before anything is computed."""
+    import os
+
+    from ..outpaths import Plan, files_read
+    inputs = [("the model or scene", args.file)] if getattr(args, "file", None) else []
+    if model is not None:
+        inputs.append(("the model", model.file))
+        if model.scene_file:
+            inputs.append(("the scene", model.scene_file))
+    inputs += [("a file", p) for p in files_read()]
+    plan = Plan(inputs)
+    for name in FILE_OPTIONS:
+        path = getattr(args, name, None)
+        companions = ()
+        if name == "xdmf" and path:        # its heavy data: BASE.xdmf.h5 beside it
+            companions = (os.path.splitext(path)[0] + ".xdmf.h5",)
+        plan.file(f"--{name}", path, companions)
+    for name in FOLDER_OPTIONS:
+        plan.folder(f"--{name}", getattr(args, name, None))
+    if getattr(args, "image_size", None) is not None:
+        _size(args.image_size)
+    if getattr(args, "animate", False) and not getattr(args, "images", None):
+        from ..errors import ModelError
+        raise ModelError("--animate needs --images DIR")
+    return plan
 
 
 def write_outputs(args, model, system, results, modal):
     """Write what the options ask for; report each path on stderr."""
     written = []
-    if args.animate and not args.images:
-        from ..errors import ModelError
-        raise ModelError("--animate needs --images DIR")
-    if args.archive:
+    check_outputs(args, model)
+    if args.archive is not None:
         from ..outputs import archive
         written.append(archive.write(args.archive, model, system, results,
                                      command=["cranefe"] + args.argv,
                                      timings=modal.timings))
-    if args.vtu:
+    if args.vtu is not None:
         from ..outputs.paraview import write_vtu
         written.append(write_vtu(args.vtu, model, system.dofs, modal))
-    if args.xdmf:
+    if args.xdmf is not None:
         from ..outputs.paraview import write_xdmf_modes
         written.append(write_xdmf_modes(args.xdmf, model, system.dofs, modal))
-    if args.images:
+    if args.images is not None:
         from ..outputs.render import render_modes
         written += render_modes(args.images, model, system.dofs, modal,
                                 size=_size(args.image_size), animate=args.animate)

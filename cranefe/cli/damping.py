@@ -5,7 +5,7 @@ stiffness). --method: modal (the estimate), exact or both (also the exact soluti
 auto (the estimate, solved exactly where the coupling criterion fails; the default).
 A scene sets the method by analysis.method or effects.damping."""
 
-from ._outputs import add_output_arguments, write_outputs
+from ._outputs import add_output_arguments, check_outputs, write_outputs
 
 HELP = "damping ratios from absorption coefficients (decoupled and exact)"
 
@@ -36,6 +36,7 @@ def run(args):
         raise ModelError(f"--count {args.count}: ask for at least one mode")
     model = load(args.file)
     t_load = time.perf_counter() - t0
+    check_outputs(args, model)
     method = args.method or scene_method(model)
     count = args.count or model.analysis.get("count")
     system = assemble(model)

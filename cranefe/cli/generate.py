@@ -1,6 +1,9 @@
 """Generate a lattice tower-crane model of a chosen size (YAML, optionally with its
 structure in mesh files)."""
 
+from ..model.generate import MAX_PANELS
+from ._outputs import count_type
+
 HELP = "generate a lattice tower-crane model of a chosen size"
 
 DESCRIPTION = """
@@ -21,11 +24,13 @@ jib and mast modes.
 
 def add_arguments(p):
     p.add_argument("kind", choices=("tower-crane",), help="what to generate")
-    p.add_argument("--dofs", type=int, default=None, help="about this many coordinates")
-    p.add_argument("--panels", type=int, default=16, help="mast panels of 2.5 m "
-                   "(default 16; --dofs overrides)")
-    p.add_argument("--tie-every", type=int, default=12, help="tie the mast to the building "
-                   "every N panels (default 12)")
+    p.add_argument("--dofs", type=count_type(1), default=None,
+                   help="about this many coordinates (at least 1; small values give the "
+                   "smallest crane, 4 panels)")
+    p.add_argument("--panels", type=count_type(1), default=16, help="mast panels of 2.5 m "
+                   f"(default 16, at most {MAX_PANELS}; --dofs overrides)")
+    p.add_argument("--tie-every", type=count_type(1), default=12, help="tie the mast to the "
+                   "building every N panels (default 12)")
     p.add_argument("--mesh", action="store_true", help="write the members as VTU meshes "
                    "beside the YAML file")
     p.add_argument("--out", required=True, help="YAML file to write")
@@ -34,8 +39,15 @@ def add_arguments(p):
 def run(args):
     import sys
 
+    from ..errors import ModelError
     from ..model.generate import panels_for, to_yaml, tower_crane, with_meshes
+    from ..outpaths import Plan
+    Plan().file("--out", args.out)
     panels = panels_for(args.dofs) if args.dofs else args.panels
+    if panels > MAX_PANELS:
+        raise ModelError(f"asks for {panels} mast panels; at most {MAX_PANELS} (about "
+                         f"{MAX_PANELS * 12:.0e} coordinates)", None,
+                         f"--dofs {args.dofs}" if args.dofs else f"--panels {args.panels}")
     model = tower_crane(panels=panels, tie_every=args.tie_every)
     if args.mesh:
         model = with_meshes(model, args.out)

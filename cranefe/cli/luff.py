@@ -22,19 +22,21 @@ def run(args):
     from ..analysis.luffing.report import luffing_document, luffing_table
     from ..model import load
     from ..outputs.report import dumps
+    from ._outputs import check_outputs
     model = load(args.file)
+    check_outputs(args, model)
     result = analyse(model, file=args.file, sensitivity=not args.no_sensitivity)
     if args.json:
         print(dumps(luffing_document(result)))
     else:
         print(luffing_table(result))
     written = []
-    if args.archive:
+    if args.archive is not None:
         from ..outputs import archive
         written.append(archive.write(args.archive, model, None, {"luffing": result},
                                      command=["cranefe"] + args.argv,
                                      timings=result.timings))
-    if args.plots:
+    if args.plots is not None:
         from ..analysis.luffing.plots import write_plots
         written += write_plots(result, args.plots)
     for path in written:

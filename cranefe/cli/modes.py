@@ -1,6 +1,6 @@
 """Natural frequencies and mode shapes of a model or scene."""
 
-from ._outputs import add_output_arguments, write_outputs
+from ._outputs import add_output_arguments, check_outputs, write_outputs
 
 HELP = "natural frequencies and modes"
 
@@ -21,8 +21,12 @@ def run(args):
     from ..outputs.report import dumps, modes_document, modes_table
     import time
     t0 = time.perf_counter()
+    if args.count is not None and args.count < 1:        # as `cranefe damping`
+        from ..errors import ModelError
+        raise ModelError(f"--count {args.count}: ask for at least one mode")
     model = load(args.file)
     t_load = time.perf_counter() - t0
+    check_outputs(args, model)
     count = args.count or model.analysis.get("count")
     system = assemble(model)
     result = modes(model, count=count, solver=args.solver, system=system)

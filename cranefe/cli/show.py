@@ -8,13 +8,20 @@ def add_arguments(p):
     p.add_argument("--json", action="store_true", help="print one JSON document")
 
 
+def _read_any(path):
+    """An archive or a sweep table (run through `archive.guarded`)."""
+    from ..outputs.archive import _read
+    from ..sweeps.table import _read_table, is_sweep
+    return _read_table(path) if is_sweep(path) else _read(path)
+
+
 def run(args):
-    from ..outputs.archive import read
+    from ..outputs.archive import guarded
     from ..outputs.report import dumps, modes_document, modes_table
-    from ..sweeps.table import is_sweep
-    if is_sweep(args.file):
-        return _show_sweep(args)
-    arc = read(args.file)
+    from ..sweeps.table import SweepTable
+    arc = guarded(_read_any, args.file)
+    if isinstance(arc, SweepTable):
+        return _show_sweep(args, arc)
     meta = {k: v for k, v in arc.meta.items() if k != "timings"}
     modal = arc.results.get("modes")
     if args.json:
@@ -39,12 +46,10 @@ def run(args):
     return 0
 
 
-def _show_sweep(args):
+def _show_sweep(args, t):
     import numpy as np
 
     from ..outputs.report import dumps
-    from ..sweeps.table import read_table
-    t = read_table(args.file)
     ok = np.array([s == "ok" for s in t.status], dtype=bool)
     doc = {"file": args.file, "sweep": t.name, "variants": t.total, "done": len(t.index),
            "failed": int((~ok).sum()), "parameters": list(t.parameters),

@@ -55,7 +55,9 @@ def run(args):
     from ..outputs.report import dumps
     from ..analysis.transient.integrate import simulate
     from ..analysis.transient.output import document, table
+    from ._outputs import check_outputs
     model = load(args.file)
+    check_outputs(args, model)
     progress = _Progress()
     try:
         result = simulate(model, progress=progress)
@@ -63,24 +65,24 @@ def run(args):
         progress.close()
     print(dumps(document(result)) if args.json else table(result))
     written = []
-    if args.csv:
+    if args.csv is not None:
         from ..analysis.transient.output import write_csv
         written.append(write_csv(args.csv, result))
-    if args.archive or args.xdmf:
+    if args.archive is not None or args.xdmf is not None:
         from ..system import assemble
         system = assemble(model)
-        if args.archive:
+        if args.archive is not None:
             from ..outputs import archive
             written.append(archive.write(args.archive, model, system, {"transient": result},
                                          command=["cranefe"] + args.argv,
                                          timings=result.timings))
-        if args.xdmf:
+        if args.xdmf is not None:
             from ..outputs.mesh import point_displacements
             from ..outputs.paraview import write_xdmf_series
             disp = point_displacements(system.dofs, result.q.T)
             written.append(write_xdmf_series(args.xdmf, model, system.dofs, result.times,
                                              {"displacement": disp}))
-    if args.plots:
+    if args.plots is not None:
         from ..analysis.transient.output import plot
         written += plot(args.plots, result)
     for path in written:

@@ -11,11 +11,11 @@ def add_arguments(p):
 
 
 def run(args):
-    import os
     from importlib import import_module
 
+    from ..outpaths import Plan, make_folder
     from ..studies import NAMES
-    os.makedirs(args.out, exist_ok=True)
+    make_folder(Plan().folder("--out", args.out), "--out")
     for name in NAMES if args.name == "all" else (args.name,):
         mod = import_module(f"..studies.{name}", __package__)
         for path in mod.run(args.out, quick=args.quick):

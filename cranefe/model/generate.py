@@ -33,12 +33,17 @@ class _Builder:
         self.groups.setdefault(group, []).append((a, b))
 
 
+MAX_PANELS = 40_000       # mast panels: about 5e5 coordinates, beyond any real crane
+
+
 def tower_crane(panels=16, jib_panels=20, counter_panels=6, tie_every=12, load=8000.0):
     """A model dict (model-format.md, with member `pairs`) of a lattice tower crane.
 
     Length: the generated crane written out part by part (mast, jib, counter-jib,
     ropes), as the module docstring sketches it.
     """
+    if not 1 <= panels <= MAX_PANELS or tie_every < 1:
+        raise ValueError(f"panels must be 1..{MAX_PANELS} and tie_every >= 1")
     B = _Builder()
     half = WIDTH / 2
     corners = [(-half, -half), (half, -half), (half, half), (-half, half)]
@@ -143,9 +148,8 @@ def to_yaml(model, path, header=""):
     Dumper = getattr(yaml, "CSafeDumper", yaml.SafeDumper)
     text = yaml.dump(model, Dumper=Dumper, default_flow_style=None, sort_keys=False,
                      width=100)
-    with open(path, "w") as fh:
-        fh.write(header + text)
-    return path
+    from ..outpaths import write_text
+    return write_text(path, header + text)
 
 
 def with_meshes(model, yaml_path):
@@ -154,6 +158,8 @@ def with_meshes(model, yaml_path):
     import os
 
     import meshio
+
+    from ..outpaths import atomic
     folder = os.path.dirname(os.path.abspath(yaml_path))
     base = os.path.splitext(os.path.basename(yaml_path))[0]
     names = list(model["nodes"])
@@ -164,8 +170,9 @@ def with_meshes(model, yaml_path):
         pairs = np.array([[index[a], index[b]] for a, b in m["pairs"]])
         used, inverse = np.unique(pairs, return_inverse=True)
         fname = f"{base}_{group}.vtu"
-        meshio.write(os.path.join(folder, fname),
-                     meshio.Mesh(X[used], [("line", inverse.reshape(-1, 2))]))
+        with atomic(os.path.join(folder, fname), ".vtu") as tmp:
+            meshio.write(tmp, meshio.Mesh(X[used], [("line", inverse.reshape(-1, 2))]),
+                         file_format="vtu")
         members[group] = {k: v for k, v in m.items() if k != "pairs"}
         members[group]["mesh"] = fname
     keep = set(model["ground"]) | set(model["masses"])

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..errors import ModelError
 from . import ropes_data, units
+from ..outpaths import named_path, note_read
 from .model import (EFFECT_CHOICES, GROUND, Body, Drum, Effects, Joint, LinearDrive,
                     Member, Model, PointMasses, Rope, Spring)
 from .yamlio import read_yaml
@@ -27,6 +28,9 @@ JOINT_TYPES = ("fixed", "hinge", "ball", "slider")
 MAX_FALLS = 1000              # parallel falls of one tackle (real ones have up to ~30)
 MAX_ROPE_ELEMENTS = 10_000    # rope_mass: elements per fall
 MAX_ROPE_ELEMENTS_TOTAL = 2_000_000   # rope_mass x every fall of every rope with mass
+# Magnitudes a number in a file may have: products and quotients of a few of them stay
+# far inside double precision (1e308), so no inf or 0 appears in the arrays.
+MIN_NUMBER, MAX_NUMBER = 1e-60, 1e60
 ANALYSIS_TYPES = ("modes", "damping", "transient", "luffing")
 
 
@@ -56,7 +60,7 @@ def read_raw(path, text=None):
     if not isinstance(model_path, str) or not model_path:
         raise ModelError("must be the path of a model file, relative to the scene file",
                          file, "model")
-    full = os.path.join(os.path.dirname(os.path.abspath(file)), model_path)
+    full = named_path(model_path, file, "model", "model file")
     if os.path.isdir(full):
         r.fail("model", f"'{model_path}' is a directory ({full}); name a model file")
     if not os.path.isfile(full):
@@ -82,6 +86,8 @@ def build(model_data, model_file, model_text="", scene_data=None, scene_file=Non
     effects = _effects(scene_data.get("effects"), model.effects, r, "effects")
     analysis = _analysis(scene_data.get("analysis", {}), r)
     scene = scene_data.get("scene")
+    if isinstance(scene, (dict, list)):
+        r.fail("scene", f"must be the scene's name (text), not {_kind(scene)}")
     model = _replace(model, effects=effects, analysis=analysis, scene_file=scene_file,
                      scene=str(scene) if scene is not None else os.path.basename(scene_file))
     _check_size(model, scene_file if "effects" in scene_data else model_file)
@@ -190,9 +196,10 @@ class _Reader:
             hint = "; write a plain number in SI units, e.g. 2.0e7, without quotes, or " \
                 "a number with its unit, e.g. '110 MN'" if isinstance(v, str) else ""
             self.fail(entry, f"must be a number, not {_kind(v)} {v!r}{hint}")
-        v = float(v)
-        if not math.isfinite(v):
-            self.fail(entry, f"must be a finite number, not {v}; give its value")
+        v = math.inf if isinstance(v, int) and abs(v) > MAX_NUMBER else float(v)
+        if not math.isfinite(v) or not (v == 0 or MIN_NUMBER <= abs(v) <= MAX_NUMBER):
+            self.fail(entry, f"must be a finite number of magnitude {MIN_NUMBER:g} .. "
+                      f"{MAX_NUMBER:g} (or 0), not {v:g}; give its value in SI units")
         if positive and v <= 0:
             self.fail(entry, f"must be positive (found {v:g}); give a value > 0")
         if nonneg and v < 0:
@@ -757,7 +764,8 @@ def _mesh_member(name, mesh, r, coords, node_names, names, planar):
     e = f"members.{name}.mesh"
     if not isinstance(mesh, str):
         r.fail(e, "must be the path of a mesh file (VTU, Gmsh, Abaqus INP, ...)")
-    path = os.path.join(os.path.dirname(os.path.abspath(r.file)), mesh)
+    path = named_path(mesh, r.file, e, "mesh file")
+    note_read(path)
     if not os.path.isfile(path):
         r.fail(e, f"mesh file '{mesh}' not found (looked for {path}); the path is relative "
                "to the model file")

@@ -55,6 +55,14 @@ _Loader.yaml_implicit_resolvers = {
 _Loader.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT, list("-+0123456789."))
 
 
+# Every cranefe file (model, scene, sweep) has the top-level key 'cranefe'. A file
+# without it is refused before its content can appear in a message, so a scene naming
+# '/etc/shadow' as its model never echoes a line of it (docs/security.md).
+_CRANEFE = re.compile(r"(?:^|[{,\s])['\"]?cranefe['\"]?\s*:")
+NOT_CRANEFE = ("not a cranefe model file: it has no 'cranefe: 1' entry; if it is a model, "
+               "scene or sweep file, start the file with 'cranefe: 1'")
+
+
 def _path(parent, key):
     """``ropes.hoist.path[2]``-style entry names for messages."""
     if isinstance(key, int):
@@ -115,6 +123,8 @@ def read_yaml(path, text=None):
     """
     file = str(path)
     if text is None:
+        from ..outpaths import note_read
+        note_read(path)
         try:
             with open(path, encoding="utf-8") as fh:
                 text = fh.read()
@@ -139,6 +149,8 @@ def read_yaml(path, text=None):
             _check_graph(node, file)      # names the entry and both lines
             raise
     except yaml.MarkedYAMLError as exc:
+        if not _CRANEFE.search(text):           # not ours: show none of it
+            raise ModelError(NOT_CRANEFE, file, "cranefe") from None
         mark = exc.problem_mark
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else None
         hint = ""
@@ -161,4 +173,6 @@ def read_yaml(path, text=None):
         raise ModelError("the document nests too deeply", file) from None
     finally:
         loader.dispose()
+    if isinstance(data, dict) and "cranefe" not in data:
+        raise ModelError(NOT_CRANEFE, file, "cranefe")
     return data, text

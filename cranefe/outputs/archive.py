@@ -3,7 +3,8 @@
 One file keeps the model (its YAML text and parsed arrays), the effects, the coordinate
 labels, the assembled matrices (CSR) and any result dataclasses (modes, damping, ...).
 Writing goes to a temporary file in the target folder that is renamed over the target
-at the end, so a crash never leaves half a file nor destroys an earlier archive.
+at the end, so a crash never leaves half a file nor destroys an earlier archive; the
+file carries a seal (size and SHA-256) checked before it is read.
 """
 
 import dataclasses
@@ -131,17 +132,14 @@ def _read_csr(g):
 
 
 def write(path, model, system=None, results=None, command=None, timings=None):
-    """Write an archive atomically; returns the path."""
+    """Write an archive atomically (`cranefe.outpaths.atomic`), sealed; returns the path."""
     import h5py
 
     from .mesh import KINDS, line_mesh
+    from ..outpaths import atomic
     path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise ModelError(f"folder {folder} does not exist; create it first", path)
-    tmp = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.tmp")
-    try:
-        with h5py.File(tmp, "w") as h:
+    with atomic(path) as tmp:
+        with h5py.File(tmp, "w", userblock_size=SEAL_SIZE) as h:
             h.attrs.update(format=FORMAT, format_version=FORMAT_VERSION,
                            cranefe_version=__version__,
                            command=" ".join(command if command is not None else sys.argv),
@@ -178,16 +176,148 @@ def write(path, model, system=None, results=None, command=None, timings=None):
                 _write_dataclass(r.create_group(name), obj)
             t = h.create_group("timings")
             t.attrs.update({k: float(v) for k, v in (timings or {}).items()})
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
+        seal(tmp)
     return path
 
 
+# ---------------------------------------------------------------- integrity seal
+#
+# HDF5 leaves a "user block" at the start of a file for the application. cranefe writes
+# there, after the file is complete, a line with the file's size and the SHA-256 of all
+# bytes after the block. A reader checks both before HDF5 parses anything, so a damaged
+# or truncated file is refused in the time it takes to hash it; HDF5's own parser can
+# hang or crash on damaged metadata. Files without a seal (written before it existed,
+# or whose seal itself is damaged) are read in a child process with a time limit.
+
+SEAL_SIZE = 512
+SEAL_MAGIC = b"cranefe-seal 1 "
+UNSEALED_TIMEOUT = 20.0        # s, plus the time to read the file at 20 MB/s
+DAMAGED = "damaged or incomplete archive"
+
+
+def _digest(fh, start):
+    import hashlib
+    fh.seek(start)
+    h = hashlib.sha256()
+    for block in iter(lambda: fh.read(1 << 20), b""):
+        h.update(block)
+    return h.hexdigest()
+
+
+def seal(path):
+    """Write the seal into the user block of a closed HDF5 file made with
+    ``userblock_size=SEAL_SIZE``."""
+    with open(path, "r+b") as fh:
+        size = os.fstat(fh.fileno()).st_size
+        line = SEAL_MAGIC + json.dumps({"size": size, "sha256": _digest(fh, SEAL_SIZE)},
+                                       separators=(",", ":")).encode() + b"\n"
+        fh.seek(0)
+        fh.write(line.ljust(SEAL_SIZE, b"\0"))
+
+
+def check_seal(path, what="archive"):
+    """True if `path` carries a seal that matches its bytes; False if it has none;
+    raises `ModelError` ("damaged or incomplete archive") if the seal does not match."""
+    damaged = DAMAGED if what == "archive" else f"damaged or incomplete {what}"
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(SEAL_SIZE)
+            if not head.startswith(SEAL_MAGIC):
+                return False
+            try:
+                info = json.loads(head[len(SEAL_MAGIC):].split(b"\n", 1)[0])
+                size, digest = int(info["size"]), str(info["sha256"])
+            except (ValueError, KeyError, TypeError):
+                raise ModelError(f"{damaged} (its integrity record is unreadable)",
+                                 path) from None
+            actual = os.fstat(fh.fileno()).st_size
+            if actual != size:
+                raise ModelError(f"{damaged} ({actual} bytes where {size} were written)",
+                                 path)
+            if _digest(fh, SEAL_SIZE) != digest:
+                raise ModelError(f"{damaged} (its checksum does not match: bytes were "
+                                 "changed after it was written)", path)
+    except FileNotFoundError:
+        raise ModelError("file not found", path) from None
+    except IsADirectoryError:
+        raise ModelError("is a folder, not an archive", path) from None
+    except OSError as exc:
+        raise ModelError(f"cannot be read ({exc.strerror})", path) from None
+    return True
+
+
+def guarded(function, path, *args, what="archive"):
+    """function(path, *args), any failure of it a `ModelError` "damaged or incomplete".
+
+    A sealed file that matches is read here; an unsealed one in a forked child with a
+    time limit (UNSEALED_TIMEOUT plus the file's size at 20 MB/s), since HDF5 can hang
+    on damaged metadata."""
+    path = os.fspath(path)
+    if check_seal(path, what):
+        return _catching(function, path, args, what)
+    timeout = UNSEALED_TIMEOUT + os.path.getsize(path) / 20e6
+    return _in_child(function, path, args, what, timeout)
+
+
+def _catching(function, path, args, what):
+    try:
+        return function(path, *args)
+    except ModelError:
+        raise
+    except Exception as exc:        # h5py raises many kinds on damaged files
+        raise ModelError(f"damaged or incomplete {what} ({type(exc).__name__}: "
+                         f"{str(exc)[:200]})", path) from None
+
+
+def _in_child(function, path, args, what, timeout):
+    import multiprocessing
+    import pickle
+    try:
+        ctx = multiprocessing.get_context("fork")
+    except ValueError:              # no fork (Windows): read here
+        return _catching(function, path, args, what)
+    recv, send = ctx.Pipe(duplex=False)
+
+    def child():
+        try:
+            out = ("ok", _catching(function, path, args, what))
+        except ModelError as exc:
+            out = ("error", str(exc.message))
+        try:
+            send.send_bytes(pickle.dumps(out))
+        except Exception as exc:
+            send.send_bytes(pickle.dumps(("error", f"damaged or incomplete {what} "
+                                          f"({type(exc).__name__})")))
+        os._exit(0)
+
+    proc = ctx.Process(target=child, daemon=True)
+    proc.start()
+    send.close()
+    try:
+        if not recv.poll(timeout):
+            raise ModelError(f"damaged or incomplete {what} (reading it did not finish in "
+                             f"{timeout:.0f} s)", path)
+        status, value = pickle.loads(recv.recv_bytes())
+    except EOFError:
+        raise ModelError(f"damaged or incomplete {what} (the reader crashed)", path) from None
+    finally:
+        recv.close()
+        if proc.is_alive():
+            proc.kill()
+        proc.join()
+    if status == "error":
+        raise ModelError(value, path)
+    return value
+
+
 def read(path):
-    """Read an archive back into an `Archive` (results as their dataclasses)."""
+    """Read an archive back into an `Archive` (results as their dataclasses); a damaged
+    or truncated file is a `ModelError` "damaged or incomplete archive", in bounded time
+    (`guarded`)."""
+    return guarded(_read, path)
+
+
+def _read(path):
     import h5py
 
     from .mesh import LineMesh

@@ -4,17 +4,17 @@ temporary name in the target folder and renamed, so a failed write loses nothing
 
 import os
 import shutil
-import tempfile
 
 import numpy as np
 
 from ..errors import ModelError
+from ..outpaths import atomic
 from .mesh import KINDS, line_mesh, point_displacements
 
 
 def _target(path):
     path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
+    folder = os.path.dirname(os.path.realpath(path))
     if not os.path.isdir(folder):
         raise ModelError(f"folder {folder} does not exist; create it first", path)
     return path, folder
@@ -43,13 +43,8 @@ def write_vtu(path, model, dofs, result):
         np.zeros(len(mesh.points))
     m = meshio.Mesh(mesh.points, [("line", mesh.lines)], point_data=point_data,
                     cell_data=_cell_data(mesh))
-    tmp = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.tmp.vtu")
-    try:
+    with atomic(path, ".vtu") as tmp:
         meshio.write(tmp, m, file_format="vtu")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
     return path
 
 
@@ -64,25 +59,29 @@ def write_xdmf_series(path, model, dofs, times, fields):
     path, folder = _target(path)
     mesh = line_mesh(model, dofs)
     base = os.path.splitext(os.path.basename(path))[0]
-    tmpdir = tempfile.mkdtemp(dir=folder, prefix=".xdmf-")
+    heavy = os.path.join(os.path.dirname(path), f"{base}.xdmf.h5")
     cwd = os.getcwd()
-    try:
-        os.chdir(tmpdir)
-        with meshio.xdmf.TimeSeriesWriter(f"{base}.xdmf") as w:
-            w.write_points_cells(mesh.points, [("line", mesh.lines)])
-            for k, t in enumerate(times):
-                w.write_data(float(t), point_data={n: v[k] for n, v in fields.items()})
-        os.chdir(cwd)
-        xdmf = os.path.join(tmpdir, f"{base}.xdmf")
-        with open(xdmf) as fh:
-            text = fh.read().replace(f">{base}.h5:", f">{base}.xdmf.h5:")
-        with open(xdmf, "w") as fh:
-            fh.write(text)
-        os.replace(os.path.join(tmpdir, f"{base}.h5"), os.path.join(folder, f"{base}.xdmf.h5"))
-        os.replace(xdmf, path)
-    finally:
-        os.chdir(cwd)
-        shutil.rmtree(tmpdir, ignore_errors=True)
+    # the series is written in a temporary folder beside `path` (.NAME.PID.tmp.d), then
+    # its two files are renamed: the data file first, so the .xdmf never names a
+    # missing one
+    with atomic(path) as tmp_xdmf, atomic(heavy) as tmp_h5:
+        work = tmp_xdmf + ".d"
+        os.mkdir(work)
+        try:
+            os.chdir(work)
+            with meshio.xdmf.TimeSeriesWriter(f"{base}.xdmf") as w:
+                w.write_points_cells(mesh.points, [("line", mesh.lines)])
+                for k, t in enumerate(times):
+                    w.write_data(float(t), point_data={n: v[k] for n, v in fields.items()})
+            os.chdir(cwd)
+            with open(os.path.join(work, f"{base}.xdmf")) as fh:
+                text = fh.read().replace(f">{base}.h5:", f">{base}.xdmf.h5:")
+            os.replace(os.path.join(work, f"{base}.h5"), tmp_h5)
+            with open(tmp_xdmf, "w") as fh:
+                fh.write(text)
+        finally:
+            os.chdir(cwd)
+            shutil.rmtree(work, ignore_errors=True)
     return path
 
 

@@ -117,7 +117,8 @@ def render_modes(folder, model, dofs, result, size=(1024, 768), animate=False, f
     """One PNG (and with animate=True one GIF) per mode into `folder`; returns paths."""
     backend()
     import pyvista as pv
-    os.makedirs(folder, exist_ok=True)
+    from ..outpaths import atomic, make_folder
+    make_folder(folder, "--images")
     mesh = line_mesh(model, dofs)
     disp = point_displacements(dofs, result.shapes)
     paths = []
@@ -130,19 +131,23 @@ def render_modes(folder, model, dofs, result, size=(1024, 768), animate=False, f
         p.add_text(_title(result, k), font_size=12, color="black")
         _camera(p, model)
         path = os.path.join(folder, f"mode_{k + 1:02d}.png")
-        p.screenshot(path)
+        with atomic(path, ".png") as tmp:
+            p.screenshot(tmp)
         paths.append(path)
         if animate:
             gif = os.path.join(folder, f"mode_{k + 1:02d}.gif")
             p.clear_actors()
-            p.open_gif(gif, fps=frames // 2)
-            cam = p.camera_position
-            for phase in np.linspace(0, 2 * np.pi, frames, endpoint=False):
-                p.clear_actors()
-                _scene(p, model, mesh, disp[k] * np.sin(phase), scale, clim)
-                p.add_text(_title(result, k), font_size=12, color="black")
-                p.camera_position = cam
-                p.write_frame()
+            with atomic(gif, ".gif") as tmp:
+                p.open_gif(tmp, fps=frames // 2)
+                cam = p.camera_position
+                for phase in np.linspace(0, 2 * np.pi, frames, endpoint=False):
+                    p.clear_actors()
+                    _scene(p, model, mesh, disp[k] * np.sin(phase), scale, clim)
+                    p.add_text(_title(result, k), font_size=12, color="black")
+                    p.camera_position = cam
+                    p.write_frame()
+                p.mwriter.close()
+                p.mwriter = None
             paths.append(gif)
         p.close()
     return paths

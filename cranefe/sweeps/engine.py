@@ -7,11 +7,23 @@ import os
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 
+from ..errors import ModelError
+from ..outpaths import Plan
 from .evaluate import evaluate
-from .table import Journal, read_journal, write_table
+from .table import Journal, journal_path, read_journal, write_table
 
 CHUNK = 8            # variants per task: amortises the transfer of the base model
 BLAS_THREADS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+SCHEDULER_TIMEOUT = 30.0   # s to connect to a Dask scheduler before giving up
+
+
+def check_outputs(sweep, plots=None):
+    """The table, its journal (and a plots folder) may not be a file the sweep reads
+    nor coincide (`cranefe.outpaths.Plan`)."""
+    plan = Plan(sweep.inputs)
+    plan.file("output", sweep.output)
+    plan.file("output", journal_path(sweep.output))
+    plan.folder("--plots", plots)
 
 
 def _chunk(jobs):
@@ -19,21 +31,29 @@ def _chunk(jobs):
 
 
 def run_sweep(sweep, workers=None, scheduler=None, reuse=True, progress=None,
-              limit=None):
+              limit=None, restart=False, plots=None, scheduler_timeout=SCHEDULER_TIMEOUT):
     """Run the variants not yet in the journal; returns {index: result} of all done.
 
     workers: None = all cores, 0 = serial in this process; scheduler: a Dask scheduler
     address (or a distributed.Client). limit: stop after that many new variants (tests).
+    The journal is locked while the sweep runs and keyed to `sweep.digest` (the spec
+    and every file it read): a journal of another sweep is refused unless `restart`,
+    which deletes it and the table first. `plots`: a folder checked with the outputs.
     """
-    done = read_journal(sweep.output)
+    check_outputs(sweep, plots)
+    journal = Journal(sweep.output, sweep.digest, restart)   # locked while it runs
+    try:
+        done = read_journal(sweep.output, sweep.digest)
+    except BaseException:
+        journal.close()
+        raise
     todo = [i for i in range(len(sweep.variants)) if i not in done][:limit]
     jobs = [(sweep.raw, sweep.parameters, sweep.outputs, sweep.modes, reuse, i,
              sweep.variants[i]) for i in todo]
     chunks = [jobs[k:k + CHUNK] for k in range(0, len(jobs), CHUNK)]
-    journal = Journal(sweep.output)
     last_write = time.perf_counter()
     try:
-        for rows in _execute(chunks, workers, scheduler):
+        for rows in _execute(chunks, workers, scheduler, scheduler_timeout):
             for row in rows:
                 journal.add(row)
                 done[row["index"]] = row
@@ -48,9 +68,9 @@ def run_sweep(sweep, workers=None, scheduler=None, reuse=True, progress=None,
     return done
 
 
-def _execute(chunks, workers, scheduler):
+def _execute(chunks, workers, scheduler, timeout):
     if scheduler is not None:
-        yield from _dask(chunks, scheduler)
+        yield from _dask(chunks, scheduler, timeout)
     elif workers == 0:
         for c in chunks:
             yield _chunk(c)
@@ -74,13 +94,37 @@ def _execute(chunks, workers, scheduler):
                 yield f.result()
 
 
-def _dask(chunks, scheduler):
+def check_scheduler(address):
+    """A Dask scheduler address: [PROTOCOL://]HOST:PORT."""
+    import re
+    m = re.match(r"^(?:(tcp|tls|ucx|ws|wss|inproc)://)?([A-Za-z0-9_.-]+|\[[0-9a-fA-F:]+\])"
+                 r":([0-9]{1,5})$", address or "")
+    if not m or not 0 < int(m[3]) < 65536:
+        raise ModelError("is not a scheduler address; give PROTOCOL://HOST:PORT, e.g. "
+                         "tcp://10.0.0.5:8786", None, f"--scheduler {address!r}")
+    return address
+
+
+def _connect(scheduler, timeout):
+    from distributed import Client
+    if isinstance(scheduler, Client):
+        return scheduler
+    check_scheduler(scheduler)
     try:
-        from distributed import Client, as_completed as dask_completed
+        return Client(scheduler, timeout=f"{timeout}s")
+    except (OSError, TimeoutError) as exc:
+        raise ModelError(f"cannot reach the scheduler within {timeout:g} s ({type(exc).__name__})"
+                         "; check the address and that the scheduler runs", None,
+                         f"--scheduler {scheduler!r}") from None
+
+
+def _dask(chunks, scheduler, timeout=SCHEDULER_TIMEOUT):
+    try:
+        from distributed import as_completed as dask_completed
     except ImportError:
         from ..errors import AnalysisError
         raise AnalysisError("--scheduler needs Dask: pip install 'cranefe[dask]'") from None
-    client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
+    client = _connect(scheduler, timeout)
     try:
         futures = client.map(_chunk, chunks, pure=False)
         for f in dask_completed(futures):

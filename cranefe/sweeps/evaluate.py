@@ -66,9 +66,17 @@ class Variant:
             law, figure = arg.split(".")
             return self.luffing[law][figure]
         k = int(arg) - 1                       # the K-th elastic mode
+        if k >= len(self.elastic):
+            from ..errors import AnalysisError
+            every = len(self.modal.omega) >= self.system.K.shape[0]
+            raise AnalysisError(
+                f"output {name}: this variant has {'only ' if every else ''}"
+                f"{len(self.elastic)} elastic mode(s)"
+                + ("" if every else f" among the {len(self.modal.omega)} computed; raise "
+                   "'modes:' in the sweep file"))
         if kind == "damping_ratio":
-            return self.damping[k] if k < len(self.damping) else np.nan
-        w = self.elastic[k] if k < len(self.elastic) else np.nan
+            return self.damping[k]
+        w = self.elastic[k]
         return {"omega": w, "frequency_hz": w / (2 * np.pi), "period_s": 2 * np.pi / w}[kind]
 
 

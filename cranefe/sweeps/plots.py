@@ -9,7 +9,8 @@ def plot_table(table, folder):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    os.makedirs(folder, exist_ok=True)
+    from ..outpaths import make_folder, save_figure
+    make_folder(folder, "--plots")
     ok = np.array([s == "ok" for s in table.status])
     paths = []
     for q, out in enumerate(table.outputs):
@@ -27,7 +28,7 @@ def plot_table(table, folder):
         fig.suptitle(f"{table.name}: {out}")
         fig.tight_layout()
         path = os.path.join(folder, f"{out.replace('.', '_')}.png")
-        fig.savefig(path, dpi=100)
+        save_figure(fig, path, dpi=100)
         plt.close(fig)
         paths.append(path)
     return paths

@@ -2,6 +2,7 @@
 
 import copy
 import itertools
+import json
 import os
 import re
 from dataclasses import dataclass
@@ -11,6 +12,7 @@ import numpy as np
 from ..errors import ModelError
 from ..model.load import _Reader, read_raw
 from ..model.yamlio import read_yaml
+from ..outpaths import inside, named_path
 
 SWEEP_KEYS = {"cranefe", "sweep", "base", "parameters", "sampling", "outputs", "modes",
               "output"}
@@ -43,6 +45,8 @@ class Sweep:
     outputs: tuple
     modes: int                # modes computed per variant
     output: str               # HDF5 table path
+    inputs: tuple = ()        # (what, path) of every file the sweep reads
+    digest: dict = None       # {"digest": sha256 of all, "files": {path: sha256}}
 
 
 def load_sweep(path):
@@ -55,10 +59,14 @@ def load_sweep(path):
     r.version(data)
     folder = os.path.dirname(os.path.abspath(file))
     base = data["base"]
-    if not isinstance(base, str) or not os.path.isfile(os.path.join(folder, base)):
+    if not isinstance(base, str) or not base:
+        r.fail("base", f"must be the path of the base model or scene relative to the "
+               f"sweep file, not {base!r}")
+    full = named_path(base, file, "base", "base model or scene")
+    if not os.path.isfile(full):
         r.fail("base", f"base model or scene {base!r} not found; give its path relative "
                "to the sweep file")
-    raw = read_raw(os.path.join(folder, base))
+    raw = read_raw(full)
     params = tuple(_parameter(name, spec, raw, r)
                    for name, spec in r.mapping(data["parameters"], "parameters").items())
     if not params:
@@ -72,10 +80,50 @@ def load_sweep(path):
     modes = r.integer(data.get("modes", needed), "modes", minimum=needed)
     variants = _variants(params, data.get("sampling", {"method": "grid"}), r)
     out = data.get("output", os.path.splitext(os.path.basename(file))[0] + ".h5")
-    if not isinstance(out, str):
+    if not isinstance(out, str) or not out.strip():
         r.fail("output", "must be the path of the HDF5 table to write")
+    output = os.path.join(folder, out)
+    if os.path.isabs(out) or not inside(output, folder):
+        r.fail("output", f"{out!r} is outside the sweep file's folder; a sweep writes its "
+               "table in or below its own folder (docs/sweeps.md): give a relative path "
+               "such as results/table.h5")
+    inputs = input_files(file, raw)
     return Sweep(str(data.get("sweep", os.path.basename(file))), file, text, raw, params,
-                 variants, outputs, modes, os.path.join(folder, out))
+                 variants, outputs, modes, output, inputs, digest(inputs))
+
+
+def input_files(file, raw):
+    """(what, path) of every file a sweep reads: the sweep file, the base model, the
+    scene and the members' mesh files."""
+    files = [("the sweep file", os.path.abspath(file)),
+             ("the base model", os.path.abspath(raw[1]))]
+    if raw[4] is not None:
+        files.append(("the base scene", os.path.abspath(raw[4])))
+    members = raw[0].get("members") if isinstance(raw[0].get("members"), dict) else {}
+    for name, m in members.items():
+        if isinstance(m, dict) and isinstance(m.get("mesh"), str):
+            files.append((f"the mesh file of member {name}",
+                          named_path(m["mesh"], raw[1], f"members.{name}.mesh",
+                                     "mesh file")))
+    return tuple(files)
+
+
+def digest(inputs):
+    """SHA-256 of every input file (and of them all): what a journal is keyed to."""
+    import hashlib
+    folder = os.path.dirname(inputs[0][1])     # the sweep file's: keys survive a move
+    files = {}
+    for _, path in inputs:
+        h = hashlib.sha256()
+        try:
+            with open(path, "rb") as fh:
+                for block in iter(lambda: fh.read(1 << 20), b""):
+                    h.update(block)
+        except OSError:
+            h.update(b"(unreadable)")
+        files[os.path.relpath(path, folder)] = h.hexdigest()
+    total = hashlib.sha256(json.dumps(files, sort_keys=True).encode()).hexdigest()
+    return {"digest": total, "files": files}
 
 
 def _output(o, entry, raw, r):

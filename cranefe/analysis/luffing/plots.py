@@ -5,6 +5,8 @@ import os
 
 import numpy as np
 
+from ...outpaths import make_folder, save_figure
+
 SHOWN = ("optimal", "linear", "cubic", "quintic", "cycloidal", "trapezoidal",
          "rest_to_rest", "swing_free")
 
@@ -19,7 +21,7 @@ def _pyplot():
 def write_plots(result, folder):
     """Write luffing_*.png into folder (created if missing); returns the paths."""
     plt = _pyplot()
-    os.makedirs(folder, exist_ok=True)
+    make_folder(folder, "--plots")
     names = list(result.law_names)
     rows = [(n, names.index(n)) for n in SHOWN if n in names]
     panels = (("alpha", "boom angle alpha (deg)", np.degrees(result.alpha)),
@@ -41,7 +43,7 @@ def write_plots(result, folder):
                      fontsize=10)
         fig.tight_layout()
         path = os.path.join(folder, f"luffing_{tag}.png")
-        fig.savefig(path, dpi=110)
+        save_figure(fig, path, dpi=110)
         plt.close(fig)
         paths.append(path)
     fig, ax = plt.subplots(figsize=(7.5, 4.0))
@@ -55,7 +57,7 @@ def write_plots(result, folder):
     ax.grid(alpha=0.3)
     fig.tight_layout()
     path = os.path.join(folder, "luffing_tip_path.png")
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     paths.append(path)
     return paths

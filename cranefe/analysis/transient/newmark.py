@@ -28,6 +28,19 @@ MAX_ITER = 60          # Illinois iterations per event
 CHATTER = 25           # zero-length events in a row at one time before giving up
 
 
+OVERFLOW = 1e100       # |x| / length scale beyond which the response has overflowed
+
+
+def _bounded(s1, t, ls):
+    """An AnalysisError naming the time if a step's response is not finite or beyond
+    OVERFLOW times the model's length scale (squares of it would overflow doubles)."""
+    big = np.abs(s1.x).max(initial=0.0), np.abs(s1.v).max(initial=0.0)
+    if not (np.isfinite(big).all() and big[0] < OVERFLOW * ls):
+        raise AnalysisError(f"the response grows without bound (overflows) in the step "
+                            f"from t = {t:.6g} s to {s1.t:.6g} s; check the loads, drive "
+                            "torques and speeds, the duration and the time step")
+
+
 class State:
     __slots__ = ("t", "x", "v", "a", "taut", "on")
 
@@ -267,7 +280,9 @@ class Stepper:
             H = t_end - s.t
             if abs(H - h) <= 1e-9 * h:
                 H = h                 # the grid step (float noise of k h - t)
-            s1 = self.trial(s, H)
+            with np.errstate(all="ignore"):     # an overflow is reported just below
+                s1 = self.trial(s, H)
+            _bounded(s1, s.t, self.ls)
             g1 = self.event_values(s1) if (len(eq.c) or len(eq.contacts)) else np.zeros(0)
             cand = np.flatnonzero(g1 < -EVENT_TOL)
             switched = []

@@ -76,14 +76,14 @@ def write_csv(path, result):
     """Time histories: t, rope forces, drum angle/speed/torque, load displacements and
     ground forces (written to a temporary file, then renamed)."""
     r = result
-    tmp = f"{path}.{os.getpid()}.tmp"
+    from ...outpaths import atomic
     cols = ["t_s"] + [f"rope_{n}_N" for n in r.rope_names]
     for n in r.drum_names:
         cols += [f"drum_{n}_rad", f"drum_{n}_rad_s", f"drum_{n}_N_m"]
     for n in r.load_names:
         cols += [f"{n}_u{a}_m" for a in "xyz"]
     cols += [f"ground_{n}_N" for n in r.ground_names]
-    with open(tmp, "w", newline="") as fh:
+    with atomic(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(cols)
         for k, t in enumerate(r.times):
@@ -92,7 +92,6 @@ def write_csv(path, result):
                 row += [r.drum_angle[k, d], r.drum_speed[k, d], r.drum_torque[k, d]]
             row += list(r.load_displacement[k].ravel()) + list(r.ground_force[k])
             w.writerow([f"{x:.9g}" for x in row])
-    os.replace(tmp, path)
     return path
 
 
@@ -103,7 +102,8 @@ def plot(folder, result):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     r = result
-    os.makedirs(folder, exist_ok=True)
+    from ...outpaths import make_folder, save_figure
+    make_folder(folder, "--plots")
     fig, axes = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
     ax = axes[0]
     for k, name in enumerate(r.rope_names):
@@ -138,6 +138,6 @@ def plot(folder, result):
     fig.suptitle(f"{r.scene or r.model_name} ({r.method}, h = {r.time_step:.3g} s)")
     fig.tight_layout()
     path = os.path.join(folder, "transient.png")
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return [path]
