@@ -166,6 +166,7 @@ def simulate(model, progress=None, initial=None):
             rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
             t, q, v, a, ev = t + hh, q1, v1, a1, ev1
             st.steps += 1
+            _two_blocking(mech, ev, t)
             if st.steps > MAX_STEPS:
                 raise AnalysisError(f"more than {MAX_STEPS} steps at t = {t:.6g} s; raise "
                                     "analysis.tolerance")
@@ -221,6 +222,23 @@ def _locate(st, t, q, v, a, h, taut, g0, cross):
         if best is None or cand[0] < best[0]:
             best = (cand[0], cand[1], k)
     return best
+
+
+def _two_blocking(mech, ev, t):
+    """A span that touches a load shrinks to 1 % of its reference length: the load has
+    reached its sheave (the engine has no contact model for that)."""
+    if not len(mech.span_a):
+        return
+    l = np.linalg.norm(ev.X[mech.span_b] - ev.X[mech.span_a], axis=1)
+    short = np.flatnonzero((l < 0.01 * mech.span_ref) & ~(mech.kin_a & mech.kin_b))
+    if len(short):
+        k = short[0]
+        names = mech.model.node_names
+        raise AnalysisError(
+            f"at t = {t:.6g} s the span {names[mech.span_a[k]]}-{names[mech.span_b[k]]} "
+            f"is down to {l[k]:.3g} m ({l[k] / mech.span_ref[k]:.1%} of its length): the "
+            "load was hauled into its sheave (two-blocking); likely cause: a drive torque "
+            f"far above what holds the load; the results up to t = {t:.6g} s are kept")
 
 
 def _blowup(t, h, what, mech, ev, taut):

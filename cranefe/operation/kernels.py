@@ -137,3 +137,22 @@ def compose(parent, joint):
 
 IDENTITY_MOTION = (np.eye(3), np.zeros((3, 3)), np.zeros((3, 3)),
                    np.zeros(3), np.zeros(3), np.zeros(3))
+
+
+def rope_spans(x, span_a, span_b, falls, rope, EA, L0, extra, taut):
+    """The span-level state of all ropes (the engine's hot path; `rope_state` assembles
+    the same into node rows): span lengths l (ns,), unit vectors e (ns, 3), rope lengths
+    L (nr,) through all falls plus `extra`, and forces S (nr,) (zero where not taut)."""
+    d = x[span_b] - x[span_a]
+    l = np.sqrt(np.einsum("ij,ij->i", d, d))
+    e = d / l[:, None]
+    L = np.bincount(rope, weights=falls * l, minlength=len(EA)) + extra
+    S = np.where(taut, EA * np.log(L / L0), 0.0)
+    return l, e, L, S
+
+
+def projected_tangent(w, e, D):
+    """sum_s w_s D_s^T (I - e_s e_s^T) D_s: the tension (geometric) stiffness of spans
+    with weights w = f S / l, on coordinates whose span-end difference is D_s (3, n)."""
+    eD = np.einsum("si,sia->sa", e, D)
+    return np.einsum("s,sia,sib->ab", w, D, D) - np.einsum("s,sa,sb->ab", w, eD, eD)

@@ -8,9 +8,10 @@ of time; every other joint and drum is held. Ropes and axial springs that touch 
 point mass carry force; the others only connect bodies whose motion is prescribed.
 
 Ropes: S = EA ln(L/L0) (tension only), L through all falls at the current geometry,
-L0 = L0_ref - sum R theta / lambda_ref (a drum winds rope at the static stretch
-lambda_ref = L_ref / L0_ref); L0_ref from the static tension S0 of the reference
-geometry, so the loads hang at rest at t = 0.
+L0 = L0_ref - sum R theta / lambda_ref (a drum winds R theta of rope at the static
+stretch lambda_ref = L_ref / L0_ref), torque on the drum (S + S_damping) R;
+L0_ref from the static tension S0 of the reference geometry, so the loads hang at rest
+at t = 0.
 """
 
 from dataclasses import dataclass
@@ -43,6 +44,7 @@ class Eval:
     drive_torque: np.ndarray  # (nd,) torque of torque/motor drives on their drums
     P_drive: float           # power fed in by the drives (W)
     P_diss: float            # power dissipated by the dashpots (W)
+    P_wound: float           # elastic energy carried onto the drums with the rope (W)
 
 
 class Mechanism:
@@ -67,6 +69,7 @@ class Mechanism:
         self._nodes(model)
         self._elements(model)
         self._drums(model)
+        self._projections()
         self._static(model)
 
     # ----------------------------------------------------------------- kinematics
@@ -195,6 +198,8 @@ class Mechanism:
         self.span_a, self.span_b = np.array(a, dtype=int), np.array(b, dtype=int)
         self.falls = np.array(f, dtype=float)
         self.span_rope = np.array(rid, dtype=int)
+        self.span_ref = np.linalg.norm(model.coords[self.span_b] - model.coords[self.span_a],
+                                       axis=1) if len(b) else np.zeros(0)
         R = [model.ropes[k] for k in act]
         self.EA = np.array([r.EA for r in R])
         self.extra = np.array([r.extra_length for r in R])
@@ -353,58 +358,77 @@ class Mechanism:
             np.subtract.at(L0, self.rope_drum, fac * theta[self.drum_of_end])
         return L0
 
+    def _projections(self):
+        """Constant maps of the hot path: span-end difference to coordinates D (ns, 3,
+        nx), span -> rope incidence A (nr, ns), drum radii Rd (nr, nd), gravity."""
+        nf = len(self.free)
+        where = {int(i): k for k, i in enumerate(self.free)}
+        ns = len(self.span_a)
+        D = np.zeros((ns, 3, self.nx))
+        for s_, (a, b) in enumerate(zip(self.span_a, self.span_b)):
+            if b in where:
+                D[s_] += self.E[3 * where[b]:3 * where[b] + 3]
+            if a in where:
+                D[s_] -= self.E[3 * where[a]:3 * where[a] + 3]
+        self.D = D
+        nr = len(self.ropes)
+        self.A = np.zeros((nr, ns))
+        self.A[self.span_rope, np.arange(ns)] = 1.0
+        self.kin_a = ~np.isin(self.span_a, self.free)
+        self.kin_b = ~np.isin(self.span_b, self.free)
+        self.Rd = np.zeros((nr, self.nd))
+        if len(self.rope_drum):
+            np.add.at(self.Rd, (self.rope_drum, self.drum_of_end), self.end_radius)
+        self.Fg = self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, nf))
+        self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
+
     def evaluate(self, t, q, v, taut, kin=None, damping=True):
-        m = self.model
         kin = self.kinematics(t) if kin is None else kin
         X, V, theta, omega = self.place(t, q, v, kin)
         n, nx = self.n, self.nx
         L0 = self.unstretched(theta)
-        L, S, r, Kn = kernels.rope_state(X, self.span_a, self.span_b, self.falls,
-                                         self.span_rope, self.EA, L0, self.extra, taut)
+        l, e, L, S = kernels.rope_spans(X, self.span_a, self.span_b, self.falls,
+                                        self.span_rope, self.EA, L0, self.extra, taut)
         nr = len(L)
         lam = L / L0
-        rf = r.reshape(nr, -1)
-        free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
-        G = rf[:, free3] @ self.E                        # (nr, nx) dL/dq_x
-        # drum ends: dL0/dtheta = -R / lambda_ref; strain rate times L
-        Rl = np.zeros((nr, self.nd))
-        if len(self.rope_drum):
-            np.add.at(Rl, (self.rope_drum, self.drum_of_end),
-                      self.end_radius / self.lam_ref[self.rope_drum])
-        edot = np.einsum("rij,ij->r", r, V) + lam * (Rl @ omega)
+        fe = self.falls[:, None] * e                         # span rows f e
+        G = self.A @ np.einsum("si,sij->sj", fe, self.D)     # (nr, nx) dL/dq_x
+        Rd = self.Rd
+        dV = V[self.span_b] - V[self.span_a]
+        edot = self.A @ np.einsum("si,si->s", fe, dV) + Rd @ omega   # elongation rate
         F = np.zeros(n)
         K = np.zeros((n, n))
         C = np.zeros((n, n))
-        # gravity
-        F[:nx] += self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, len(self.free)))
-        # ropes: elastic
-        F[:nx] -= G.T @ S
-        Kf = Kn[np.ix_(free3, free3)]
-        K[:nx, :nx] += self.E.T @ Kf @ self.E
+        cL = np.where(taut, self.EA / L, 0.0)
+        F[:nx] = self.Fg - G.T @ S
+        # tangent: EA/L G^T G + sum f S / l (I - e e^T) on the span ends
+        K[:nx, :nx] = (G.T * cL) @ G + kernels.projected_tangent(
+            self.falls * S[self.span_rope] / l, e, self.D)
         # damping: b = psi c / (2 pi w), c = EA/L, w the rope's axial frequency now
         Sd = np.zeros(nr)
+        b = np.zeros(nr)
         if damping and self.damped and nr:
-            c = np.where(taut, self.EA / L, 0.0)
-            w2 = c * (np.einsum("rj,rj->r", G, G / self.M[:nx]) if nx else 0.0)
+            w2 = cL * np.einsum("rj,rj->r", G, G / self.M[:nx])
             for cc, k in enumerate(self.qdrums):
-                w2 = w2 + c * (lam * Rl[:, k]) ** 2 / self.J[cc]
+                w2 = w2 + cL * Rd[:, k] ** 2 / self.J[cc]
             w = np.sqrt(np.maximum(w2, 0.0))
-            b = np.where(w > 0, self.psi * c / (2 * np.pi * np.where(w > 0, w, 1.0)), 0.0)
+            b = np.where(w > 0, self.psi * cL / (2 * np.pi * np.where(w > 0, w, 1.0)), 0.0)
             Sd = b * edot
             F[:nx] -= G.T @ Sd
             C[:nx, :nx] += (G.T * b) @ G
-        # drums with a coordinate: torque of the rope -(R/lam_ref)(S lam - w) - Sd R lam/lam_ref
-        wden = self.EA * (lam * np.log(lam) - lam + 1)
-        wden = np.where(taut, wden, 0.0)
+        # drums with a coordinate: the ropes' torque -(S + Sd) R
+        dS = np.where(taut, self.EA / (self.lam_ref * L0), 0.0)     # dS/d(R theta)
         drive_torque = np.zeros(self.nd)
         for cc, k in enumerate(self.qdrums):
             i = nx + cc
-            Rk = Rl[:, k]
-            F[i] -= Rk @ (S * lam - wden) + Rk @ (Sd * lam)
-            dS = np.where(taut, self.EA / L0, 0.0)
-            K[i, :nx] += (Rk * dS) @ G
+            Rk = Rd[:, k]
+            F[i] -= Rk @ (S + Sd)
+            K[i, :nx] += (Rk * cL) @ G
             K[:nx, i] += G.T @ (Rk * dS)
-            K[i, i] += (Rk ** 2 * dS * lam) .sum()
+            K[i, i] += (Rk ** 2 * dS).sum()
+            C[i, :nx] += (Rk * b) @ G
+            C[:nx, i] += G.T @ (Rk * b)
+            C[i, i] += (Rk ** 2 * b).sum()
             d = self.drum_drive[k]
             if d.kind == "torque":
                 tq, dtq = d.torque(t)[0], 0.0
@@ -415,11 +439,24 @@ class Mechanism:
             drive_torque[k] = tq
             F[i] += tq
             C[i, i] -= dtq
+        # energy carried onto (off) the drums with the wound rope: the drum's work
+        # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
+        # (S lambda - w), w = EA (lambda ln lambda - lambda + 1)
+        if len(self.rope_drum):
+            wden = np.where(taut, self.EA * (lam * np.log(lam) - lam + 1), 0.0)
+            P_wound = float(((S - (S * lam - wden) / self.lam_ref) * (Rd @ omega)).sum())
+        else:
+            P_wound = 0.0
+        # power fed through kinematic nodes (moving sheaves, dead ends on bodies)
+        Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
+            np.where(self.kin_a[:, None], V[self.span_a], 0.0)
+        rVk = self.A @ np.einsum("si,si->s", fe, Vk)
         # springs
         N = np.zeros(len(self.sp_k))
         if len(self.sp_k):
             d_, N, rs, Ks = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
                                                  self.sp_dref, self.N_ref)
+            free3 = self.free3
             rsf = rs.reshape(len(N), -1)
             Gs = rsf[:, free3] @ self.E
             F[:nx] -= Gs.T @ N
@@ -442,12 +479,11 @@ class Mechanism:
             P_sp_kin = P_sp_diss = 0.0
         # power of the drives: kinematic nodes pulled by the ropes and springs, prescribed
         # drums, torque drives, and the horizontal guidance of masses without sway
-        Ssum = S + Sd
-        P = float(Ssum @ np.einsum("rij,ij->r", r[:, self.kin], V[self.kin])) + P_sp_kin
+        P = float((S + Sd) @ rVk) + P_sp_kin
         for k in range(self.nd):
             d = self.drum_drive[k]
             if d is not None and d.kind == "profile":
-                P += float(Rl[:, k] @ (S * lam - wden + Sd * lam)) * omega[k]
+                P += float(Rd[:, k] @ (S + Sd)) * omega[k]
         P += float(drive_torque @ omega)
         if not self.sway and len(self.free):
             Xk, Vk, Ak, _ = kin
@@ -456,7 +492,7 @@ class Mechanism:
             P += float(self.free_mass @ np.einsum("ij,ij->i", Vk[self.root] @ H.T,
                                                   Ak[self.root] @ H.T))
         return Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
-                    P, float(Sd @ edot) + P_sp_diss)
+                    P, float(Sd @ edot) + P_sp_diss, P_wound)
 
     def energy(self, ev, taut):
         """Kinetic, gravity potential and elastic energy (J)."""
@@ -465,7 +501,8 @@ class Mechanism:
         for cc, k in enumerate(self.qdrums):
             T += 0.5 * self.J[cc] * ev.omega[k] ** 2
         Vg = -float(self.free_mass @ (ev.X[self.free] @ self.g))
-        U = float(np.where(taut, kernels.hencky_energy(self.EA, ev.L, ev.L0), 0.0).sum())
+        with np.errstate(invalid="ignore", divide="ignore"):
+            U = float(np.where(taut, kernels.hencky_energy(self.EA, ev.L, ev.L0), 0.0).sum())
         if len(self.sp_k):
             d = np.linalg.norm(ev.X[self.sp_b] - ev.X[self.sp_a], axis=1) - self.sp_dref
             U += float((self.N_ref * d + 0.5 * self.sp_k * d * d).sum())
@@ -525,9 +562,7 @@ class Mechanism:
         self.L0_ref = L / self.lam_ref
         self.q0 = q0
         self.taut0 = S0 > 0
-        # drums with a coordinate start at rest: what holds them is the rope torque
+        # what holds each drum at rest: the ropes' torque S0 R
         self.hold_torque = np.zeros(self.nd)
-        lam = self.lam_ref
-        wden = self.EA * (lam * np.log(lam) - lam + 1)
         for j, dd, R in zip(self.rope_drum, self.drum_of_end, self.end_radius):
-            self.hold_torque[dd] += R / lam[j] * (S0[j] * lam[j] - wden[j])
+            self.hold_torque[dd] += R * S0[j]

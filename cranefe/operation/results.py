@@ -138,7 +138,7 @@ class Recorder:
         nr = len(mech.ropes)
         self.peak = np.zeros(nr)
         self.peak_t = np.zeros(nr)
-        self.W = self.D = 0.0
+        self.W = self.D = self.Wd = 0.0
         self.mass_nodes = mech.mass_nodes
         self.sway_nodes = mech.free
         self.max_terms = np.zeros(3)
@@ -163,6 +163,7 @@ class Recorder:
         ev0 = self.last
         self.W += 0.5 * h * (ev0.P_drive + ev1.P_drive)
         self.D += 0.5 * h * (ev0.P_diss + ev1.P_diss)
+        self.Wd += 0.5 * h * (ev0.P_wound + ev1.P_wound)
         S0, S1 = ev0.S + ev0.Sd, ev1.S + ev1.Sd
         best, where = hermite_max(S0, S1, self._force_rate(ev0), self._force_rate(ev1), h)
         up = best > self.peak
@@ -210,12 +211,10 @@ class Recorder:
         m = self.m
         if d.kind != "profile":
             return ev.drive_torque[d.index]
-        lam = ev.L / ev.L0
-        w = np.where(ev.S > 0, m.EA * (lam * np.log(lam) - lam + 1), 0.0)
         tq = 0.0
         for j, dd, R in zip(m.rope_drum, m.drum_of_end, m.end_radius):
             if dd == d.index:
-                tq += R / m.lam_ref[j] * (ev.S[j] * lam[j] - w[j] + ev.Sd[j] * lam[j])
+                tq += R * (ev.S[j] + ev.Sd[j])
         return tq
 
     def _angle(self, ev, k):
@@ -265,10 +264,11 @@ class Recorder:
         E1 = getattr(self, "last_E", self.E0)
         dE = sum(E1) - sum(self.E0)
         scale = max(abs(self.W), abs(self.D), *self.max_terms, 1e-300)
-        err = abs(dE - self.W + self.D) / scale
+        err = abs(dE - self.W + self.D + self.Wd) / scale
         energy = {"kinetic_initial": self.E0[0], "kinetic_final": E1[0],
                   "gravity_change": E1[1] - self.E0[1], "elastic_initial": self.E0[2],
-                  "elastic_final": E1[2], "work_drives": self.W, "dissipated": self.D}
+                  "elastic_final": E1[2], "work_drives": self.W, "dissipated": self.D,
+                  "wound_on_drums": self.Wd}
         units = tuple(d.units for d in spec.drives)
         labels = []
         for k, i in enumerate(m.free):
