@@ -128,3 +128,25 @@ def speed_table(times, speeds):
     pieces = [(times[k + 1] - times[k], (speeds[k + 1] - speeds[k]) /
                (times[k + 1] - times[k]), 0.0) for k in range(len(times) - 1)]
     return Motion.build(times[0], pieces, "table", v0=speeds[0])
+
+
+def combine(motions):
+    """The sum of several moves of one drive (e.g. hoisting, then lowering later): a
+    piecewise constant-jerk motion on the union of their breakpoints."""
+    if len(motions) == 1:
+        return motions[0]
+    t = np.unique(np.concatenate([m.t for m in motions]))
+    s, v, a, j = (np.zeros(len(t)) for _ in range(4))
+    for m in motions:
+        for k, tk in enumerate(t):
+            sk, vk, ak = m(tk)
+            s[k] += sk
+            v[k] += vk
+            a[k] += ak
+            i = int(np.searchsorted(m.t, tk, side="right")) - 1
+            if 0 <= i < len(m.t) - 1:
+                j[k] += m.j[i]
+    v0 = sum(m.v[0] if m.t[0] > 0 else 0.0 for m in motions)
+    if t[0] > 0 and v0 != 0:
+        raise ValueError("moves with a speed before their first time cannot be combined")
+    return Motion(t, s, v, np.append(a[:-1], 0.0), np.append(j[:-1], 0.0), "combined")

@@ -155,7 +155,23 @@ def _drive(model, r, name, spec, duration):
     if kind == "motor":
         return Drive(name, target, index, "motor",
                      motor=_motor(r, spec["motor"], f"{e}.motor"), entry=e)
-    motion = _motion(r, spec["profile"], f"{e}.profile", target == "hinge")
+    raw = spec["profile"]
+    if isinstance(raw, list):
+        if not raw:
+            r.fail(f"{e}.profile", "an empty list of moves; give one or more profiles")
+        moves = [_motion(r, p, f"{e}.profile[{k}]", target == "hinge")
+                 for k, p in enumerate(raw)]
+        for k, mv in enumerate(moves):
+            if mv.kind == "table":
+                r.fail(f"{e}.profile[{k}]", "a speed table gives the whole history; list "
+                       "only trapezoid and s_curve moves, or give one table")
+        for k in range(1, len(moves)):
+            if moves[k].t[0] < moves[k - 1].t[-1] - 1e-12:
+                r.fail(f"{e}.profile[{k}].start", f"starts at {moves[k].t[0]:g} s, before "
+                       f"the previous move ends ({moves[k - 1].t[-1]:.6g} s)")
+        motion = profiles.combine(moves)
+    else:
+        motion = _motion(r, raw, f"{e}.profile", target == "hinge")
     drive = Drive(name, target, index, "profile", motion=motion, entry=e)
     _check_travel(model, r, drive, duration)
     return drive
