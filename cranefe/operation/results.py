@@ -14,6 +14,19 @@ import numpy as np
 MAX_EVENTS = 100
 
 
+@dataclass
+class _Sample:
+    """What an output time stores (a subset of mechanism.Eval)."""
+
+    t: float
+    X: np.ndarray
+    S: np.ndarray
+    Sd: np.ndarray
+    theta: np.ndarray
+    omega: np.ndarray
+    drive_torque: np.ndarray
+
+
 def _num(x):
     x = float(x)
     return x if np.isfinite(x) else None
@@ -183,10 +196,29 @@ class Recorder:
             qs = h00 * q0 + h10 * h * v0 + h01 * q1 + h11 * h * v1
             d00, d10, d01, d11 = 6*s**2 - 6*s, 3*s**2 - 4*s + 1, -6*s**2 + 6*s, 3*s**2 - 2*s
             vs = (d00 * q0 + d01 * q1) / h + d10 * v0 + d11 * v1
-            evs = ev1 if s >= 1 - 1e-12 else self.m.evaluate(ts, qs, vs, taut)
+            evs = ev1 if s >= 1 - 1e-12 else self._between(ts, s, h, qs, vs, ev0, ev1)
             self._sample(evs, qs, vs)
             self.next_out += 1
         self.last = ev1
+
+    def _between(self, ts, s, h, qs, vs, ev0, ev1):
+        """The state at an output time inside a step, without a force evaluation: node
+        positions from the interpolated coordinates, rope forces from the cubic Hermite
+        interpolant of their values and rates at the step's ends."""
+        m = self.m
+        X, V, theta, omega = m.place(ts, qs, vs)
+        F0, F1 = ev0.S + ev0.Sd, ev1.S + ev1.Sd
+        d0, d1 = self._force_rate(ev0), self._force_rate(ev1)
+        F = (2*s**3 - 3*s**2 + 1) * F0 + (s**3 - 2*s**2 + s) * h * d0 \
+            + (-2*s**3 + 3*s**2) * F1 + (s**3 - s**2) * h * d1
+        tq = np.zeros(m.nd)
+        for k in m.qdrums:
+            d = m.drum_drive[k]
+            if d.kind == "torque":
+                tq[k] = d.torque(ts)[0]
+            else:
+                tq[k] = m.gear[k] * d.motor.torque(m.gear[k] * omega[k])[0]
+        return _Sample(ts, X, F, np.zeros_like(F), theta, omega, tq)
 
     def _sample(self, ev, q, v):
         m = self.m
