@@ -111,11 +111,11 @@ def simulate(model, progress=None, initial=None):
     bps = list(spec.breakpoints) + [T]
     for d in spec.drives:
         if d.motion is not None:
-            t0m = d.motion.t[0]
-            if 0 < t0m < T:
-                st.events.append((float(t0m), f"drive {d.name} starts"))
-            if 0 < d.motion.end < T:
-                st.events.append((float(d.motion.end), f"drive {d.name} stops"))
+            for a0_, b0_ in d.motion.moves():
+                if 0 < a0_ < T:
+                    st.events.append((a0_, f"drive {d.name} starts"))
+                if 0 < b0_ < T:
+                    st.events.append((b0_, f"drive {d.name} stops"))
     h = min(spec.max_step, 1e-3 * T, 1e-2)
     tol = spec.tolerance * lscale
     hmin = 1e-12 * max(T, 1.0)

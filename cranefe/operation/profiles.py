@@ -62,6 +62,30 @@ class Motion:
         return float(self.t[-1]) if abs(self.v[-1]) <= 1e-12 * max(
             1.0, np.abs(self.v).max()) else float("inf")
 
+    def moves(self):
+        """(start, stop) times of each motion between rests (stop inf if it never
+        rests again)."""
+        tt = self.t
+        scale = max(1.0, np.abs(self.v).max(), np.abs(self.a).max())
+
+        def moving(k):          # segment k (the last one: constant speed v[-1])
+            if k == len(tt) - 1:
+                return abs(self.v[k]) > 1e-12 * scale
+            return abs(self.v[k]) > 1e-12 * scale or abs(self.a[k]) > 1e-12 * scale \
+                or abs(self.j[k]) > 1e-12 * scale
+        out, start = [], None
+        if abs(self.v[0]) > 1e-12 * scale:          # moving from t = 0 (a table)
+            start = 0.0
+        for k in range(len(tt)):
+            if moving(k) and start is None:
+                start = float(tt[k])
+            elif not moving(k) and start is not None:
+                out.append((start, float(tt[k])))
+                start = None
+        if start is not None:
+            out.append((start, float("inf")))
+        return out
+
     def extremes(self, T):
         """(min, max) of the position over 0 <= t <= T."""
         cand = [0.0, T] + [x for x in self.t if 0 <= x <= T]
