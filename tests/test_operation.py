@@ -236,7 +236,8 @@ def test_bessel_reference_solves_the_variable_length_pendulum():
     """The closed form against the ODE l th'' + 2 l' th' + g th = 0 integrated to 1e-12."""
     for v in (0.5, -0.5):
         l0 = 10.0 if v > 0 else 20.0
-        sol = solve_ivp(lambda t, y: [y[1], -(2 * v * y[1] + G * y[0]) / (l0 + v * t)],
+        sol = solve_ivp(lambda t, y, v=v, l0=l0: [y[1], -(2 * v * y[1] + G * y[0])
+                                                  / (l0 + v * t)],
                         (0, 20), [0.01, 0.0], rtol=1e-12, atol=1e-15, dense_output=True)
         t = np.linspace(0, 20, 41)
         np.testing.assert_allclose(variable_pendulum(t, l0, v, 0.01), sol.sol(t)[0],

@@ -56,6 +56,7 @@ class Stepper:
         q1 = q0 + h * v0 + 0.5 * h * h * a0
         c1, c2 = 4.0 / (h * h), 2.0 / h
         dq_norm = np.inf
+        ev = None
         for it in range(NEWTON_MAX):
             v1 = c2 * (q1 - q0) - v0
             a1 = c1 * (q1 - q0 - h * v0) - a0

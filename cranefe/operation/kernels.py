@@ -13,9 +13,9 @@ import numpy as np
 def hencky_tension(EA, L, L0):
     """Rope force S = EA ln(L / L0) (logarithmic strain), and dS/dL = EA / L.
 
-    For small strain this is EA (L - L0) / L0 to O(strain^2) (a 0.15 % strain changes S by
-    7.5e-4 of itself... relative O(strain/2)); its tangent EA / L in the *current* length is
-    the linear core's `c = EA / length` exactly (docs/operations.md, "Rope law")."""
+    It equals the engineering law EA (L - L0) / L0 to a relative strain/2 (7.5e-4 of S at a
+    0.15 % strain); its tangent EA / L in the *current* length is the linear core's
+    `c = EA / length` exactly (docs/operations.md, "Mechanics")."""
     return EA * np.log(L / L0), EA / L
 
 

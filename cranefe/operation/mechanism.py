@@ -51,7 +51,7 @@ class Mechanism:
     def __init__(self, model, spec):
         self.model, self.spec = model, spec
         file = model.file
-        self.nn = nn = len(model.node_names)
+        self.nn = len(model.node_names)
         g = np.asarray(model.gravity, float)
         self.g = g
         gn = np.linalg.norm(g)
@@ -329,7 +329,7 @@ class Mechanism:
 
     def place(self, t, q, v, kin=None):
         """Node positions and velocities (nn, 3) and all drum angles/speeds."""
-        X, V, A, th = self.kinematics(t) if kin is None else kin
+        X, V, _, th = self.kinematics(t) if kin is None else kin
         X, V = X.copy(), V.copy()
         nf = len(self.free)
         if nf:
@@ -454,7 +454,7 @@ class Mechanism:
         # springs
         N = np.zeros(len(self.sp_k))
         if len(self.sp_k):
-            d_, N, rs, Ks = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
+            _, N, rs, Ks = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
                                                  self.sp_dref, self.N_ref)
             free3 = self.free3
             rsf = rs.reshape(len(N), -1)
@@ -486,7 +486,7 @@ class Mechanism:
                 P += float(Rd[:, k] @ (S + Sd)) * omega[k]
         P += float(drive_torque @ omega)
         if not self.sway and len(self.free):
-            Xk, Vk, Ak, _ = kin
+            _, Vk, Ak, _ = kin
             up = self.up
             H = np.eye(3) - np.outer(up, up)
             P += float(self.free_mass @ np.einsum("ij,ij->i", Vk[self.root] @ H.T,
@@ -521,7 +521,7 @@ class Mechanism:
         self.N_ref = np.zeros(ns)
         q0 = np.zeros(self.n)
         q0[:self.nx] = self.qx_ref
-        X, V, theta, omega = self.place(0.0, q0, np.zeros(self.n))
+        X = self.place(0.0, q0, np.zeros(self.n))[0]
         L, _, r, _ = kernels.rope_state(X, self.span_a, self.span_b, self.falls,
                                         self.span_rope, self.EA, np.ones(nr), self.extra,
                                         np.ones(nr, bool))
@@ -530,7 +530,7 @@ class Mechanism:
         c = self.EA / L
         rows, stiff = [G], [c]
         if ns:
-            d, _, rs, _ = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
+            _, _, rs, _ = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
                                                self.sp_dref, np.zeros(ns))
             rows.append(rs.reshape(ns, -1)[:, free3] @ self.E)
             stiff.append(self.sp_k)

@@ -7,10 +7,10 @@ import numpy as np
 
 
 def table(r):
-    lines = [f"{r.scene or r.model_name}: operation, {len(r.coordinates)} coordinates, "
-             f"{r.steps} steps ({r.rejected} rejected) over {r.duration:g} s",
-             f"  {'rope':<20} {'static [N]':>12} {'max [N]':>12} {'at [s]':>9} "
-             f"{'dynamic factor':>15}"]
+    lines = [(f"{r.scene or r.model_name}: operation, {len(r.coordinates)} coordinates, "
+              f"{r.steps} steps ({r.rejected} rejected) over {r.duration:g} s"),
+             (f"  {'rope':<20} {'static [N]':>12} {'max [N]':>12} {'at [s]':>9} "
+              f"{'dynamic factor':>15}")]
     for n, s, m, t, f in zip(r.rope_names, r.rope_force_static, r.rope_force_max,
                              r.rope_force_max_time, r.dynamic_factor):
         if np.isfinite(m):

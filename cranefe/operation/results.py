@@ -140,7 +140,6 @@ def hermite_max(S0, S1, d0, d1, h):
 class Recorder:
     def __init__(self, mech, spec):
         self.m, self.spec = mech, spec
-        model = mech.model
         self.samples = []
         T = spec.duration
         self.out_times = np.arange(0.0, T + 0.5 * spec.output_step, spec.output_step)
@@ -206,7 +205,7 @@ class Recorder:
         positions from the interpolated coordinates, rope forces from the cubic Hermite
         interpolant of their values and rates at the step's ends."""
         m = self.m
-        X, V, theta, omega = m.place(ts, qs, vs)
+        X, _, theta, omega = m.place(ts, qs, vs)
         F0, F1 = ev0.S + ev0.Sd, ev1.S + ev1.Sd
         d0, d1 = self._force_rate(ev0), self._force_rate(ev1)
         F = (2*s**3 - 3*s**2 + 1) * F0 + (s**3 - 2*s**2 + s) * h * d0 \

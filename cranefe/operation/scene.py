@@ -10,7 +10,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ModelError
 from ..model.load import _Reader
 from ..transient.scene import Motor, Profile, _motor, _profile
 from . import profiles
@@ -254,7 +253,7 @@ def _check_travel(model, r, d, duration):
                f"of drums.{drum.name}); haul in, shorten the move or add rope_reserve")
     haul = hi * drum.radius
     on_body = {i for b in model.bodies for i in b.nodes} | set(model.ground.tolist())
-    free = set(int(i) for i in model.masses.nodes) - on_body
+    free = {int(i) for i in model.masses.nodes} - on_body
     for rope in model.ropes:
         if d.index not in rope.end_drums:
             continue
