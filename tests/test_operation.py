@@ -586,3 +586,23 @@ def test_luffing_by_a_hinge_moves_the_boom_tip_on_its_circle(tmp_path):
                 "profile: {type: trapezoid, distance_deg: 40, v_max_deg: 2, a_max_deg: 1}}\n",
                 name="bad.yaml")
     assert main(["simulate", str(bad)]) == 2
+
+
+def test_without_sway_the_load_follows_its_trolley(tmp_path):
+    """sway: false: one coordinate (the height); the load stays exactly below the
+    trolley while it runs 10 m and the slewing turns the jib by 30 deg, and the energy
+    balance (the guidance's work on the load's horizontal motion included) closes."""
+    path = scene(tmp_path, SLEWING, "  duration: 30\n  output_step: 0.1\n  drives:\n"
+                 "    trolley: {slider: travel, profile: {type: trapezoid, distance: 10, "
+                 "v_max: 1.0, a_max: 0.5}}\n"
+                 "    slew: {hinge: slew, profile: {type: s_curve, distance_deg: 30, "
+                 "v_max_deg: 3, a_max_deg: 1, j_max_deg: 1, start: 5}}\n",
+                 effects="{sway: false}", R=10, Z=20, EAVAL=1e9)
+    res = simulate(load(path))
+    assert res.coordinates == ("H.height",)
+    P = res.mass_position[:, 0]
+    phi = np.arctan2(P[:, 1], P[:, 0])
+    assert np.hypot(P[-1, 0], P[-1, 1]) == pytest.approx(20.0, abs=1e-9)
+    assert phi[-1] == pytest.approx(np.radians(30), abs=1e-9)
+    assert np.abs(res.sway_deg).max() < 1e-9
+    assert res.energy_error < 1e-6

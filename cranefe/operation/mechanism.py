@@ -45,6 +45,7 @@ class Eval:
     P_drive: float           # power fed in by the drives (W)
     P_diss: float            # power dissipated by the dashpots (W)
     P_wound: float           # elastic energy carried onto the drums with the rope (W)
+    T_guided: float = 0.0    # horizontal kinetic energy of loads without sway (J)
 
 
 class Mechanism:
@@ -478,21 +479,21 @@ class Mechanism:
         else:
             P_sp_kin = P_sp_diss = 0.0
         # power of the drives: kinematic nodes pulled by the ropes and springs, prescribed
-        # drums, torque drives, and the horizontal guidance of masses without sway
+        # drums, torque drives
         P = float((S + Sd) @ rVk) + P_sp_kin
         for k in range(self.nd):
             d = self.drum_drive[k]
             if d is not None and d.kind == "profile":
                 P += float(Rd[:, k] @ (S + Sd)) * omega[k]
         P += float(drive_torque @ omega)
+        # loads without sway are guided horizontally with their carrier: the guidance
+        # does the work of their horizontal kinetic energy (the ropes hang vertically)
+        T_guided = 0.0
         if not self.sway and len(self.free):
-            _, Vk, Ak, _ = kin
-            up = self.up
-            H = np.eye(3) - np.outer(up, up)
-            P += float(self.free_mass @ np.einsum("ij,ij->i", Vk[self.root] @ H.T,
-                                                  Ak[self.root] @ H.T))
+            Vh = V[self.free] - np.outer(V[self.free] @ self.up, self.up)
+            T_guided = 0.5 * float(self.free_mass @ np.einsum("ij,ij->i", Vh, Vh))
         return Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
-                    P, float(Sd @ edot) + P_sp_diss, P_wound)
+                    P, float(Sd @ edot) + P_sp_diss, P_wound, T_guided)
 
     def energy(self, ev, taut):
         """Kinetic, gravity potential and elastic energy (J)."""

@@ -173,7 +173,7 @@ class Recorder:
     def accept(self, t0, q0, v0, a0, ev0, t1, q1, v1, a1, ev1, taut):
         h = t1 - t0
         ev0 = self.last
-        self.W += 0.5 * h * (ev0.P_drive + ev1.P_drive)
+        self.W += 0.5 * h * (ev0.P_drive + ev1.P_drive) + ev1.T_guided - ev0.T_guided
         self.D += 0.5 * h * (ev0.P_diss + ev1.P_diss)
         self.Wd += 0.5 * h * (ev0.P_wound + ev1.P_wound)
         S0, S1 = ev0.S + ev0.Sd, ev1.S + ev1.Sd
