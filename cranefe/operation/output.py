@@ -53,8 +53,8 @@ def write_csv(path, r):
 
 
 def plot(folder, r):
-    """operation.png: sway angles, rope forces, drive speeds, and the loads' paths seen
-    from above."""
+    """operation.png: sway angles, rope forces, drive speeds (and drum torques, dashed),
+    and the loads' paths seen from above."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -81,6 +81,12 @@ def plot(folder, r):
     ax.set_xlabel("t [s]")
     if r.drive_names:
         ax.legend(fontsize=8)
+    drums = [k for k in range(len(r.drive_names)) if np.any(np.isfinite(r.drive_torque[:, k]))]
+    if drums:
+        tw = ax.twinx()
+        for k in drums:
+            tw.plot(r.times, r.drive_torque[:, k] / 1e3, ls="--", lw=0.8)
+        tw.set_ylabel("drum torque [kN m] (dashed)")
     ax = fig.add_subplot(1, 2, 2)
     for k, n in enumerate(r.mass_names):
         ax.plot(r.mass_position[:, k, 0], r.mass_position[:, k, 1], label=n)
