@@ -266,13 +266,14 @@ def test_hoisting_and_lowering_with_sway_follow_the_bessel_solution(tmp_path, v)
     assert mech.n == 2
 
 
-@pytest.mark.parametrize("a, tol", [(0.05, 2e-3), (0.5, 2e-2)])
-def test_residual_sway_after_a_trapezoidal_trolley_move(tmp_path, a, tol):
+@pytest.mark.parametrize("a, tol, step_tol", [(0.05, 2e-3, 1e-9), (0.5, 2e-2, 1e-8)])
+def test_residual_sway_after_a_trapezoidal_trolley_move(tmp_path, a, tol, step_tol):
     """Trolley moved 10 m at v_max 1 m/s (accelerating at a; at 0.05 m/s^2 the profile
     is triangular, T_c = 0): the residual sway of a simple pendulum is (4 a / g) |sin(w T_a / 2) sin(w (T_a + T_c) / 2)| (linear, rigid
     support, w = sqrt(g/l)); the engine's nonlinear residual agrees to 0.2 % at a small
     amplitude and 2 % at a large one (the nonlinear deviation, measured, is in
-    docs/operations.md)."""
+    docs/operations.md; the small residual is a difference of two swings, so its step
+    tolerance is tighter)."""
     l = 10.0
     vp = min(1.0, np.sqrt(10.0 * a))        # triangular if the distance is short
     T_a = vp / a
@@ -280,11 +281,11 @@ def test_residual_sway_after_a_trapezoidal_trolley_move(tmp_path, a, tol):
     wn = np.sqrt(G / l)
     period = 2 * np.pi / wn
     dur = 2 * T_a + T_c + 1.2 * period
-    path = scene(tmp_path, SLEWING, f"  duration: {dur}\n  tolerance: 1.0e-9\n"
+    path = scene(tmp_path, SLEWING, f"  duration: {dur}\n  tolerance: {step_tol}\n"
                  f"  output_step: 0.01\n"
                  f"  drives:\n    trolley: {{slider: travel, profile: {{type: trapezoid, "
                  f"distance: 10, v_max: 1.0, a_max: {a}}}}}\n", R=5.0, Z=30 - l,
-                 EAVAL=1.0e10)
+                 EAVAL=1.0e9)
     res = simulate(load(path))
     lin = np.degrees(4 * a / G * abs(np.sin(wn * T_a / 2) * np.sin(wn * (T_a + T_c) / 2)))
     got = res.sway_residual_deg[0]
