@@ -8,12 +8,14 @@ The keys of `analysis: {type: transient, ...}` are in docs/transient.md.
 import sys
 import time
 
-HELP = "simulate a transient scene: rope forces, dynamic factors, lift-off (docs/transient.md)"
+HELP = ("simulate a transient scene (rope forces, dynamic factors, lift-off; "
+        "docs/transient.md) or an operation scene (large motions; docs/operations.md)")
 PROGRESS_AFTER = 2.0       # s: a progress bar appears for runs longer than this
 
 
 def add_arguments(p):
-    p.add_argument("file", help="scene file with analysis: {type: transient, ...}")
+    p.add_argument("file", help="scene file with analysis: {type: transient, ...} or "
+                   "{type: operation, ...}")
     p.add_argument("--json", action="store_true", help="print one JSON document")
     p.add_argument("--csv", metavar="OUT.csv", help="time histories (rope forces, drums, "
                    "load displacements, ground forces)")
@@ -50,6 +52,39 @@ class _Progress:
             self.bar.stop()
 
 
+def run_operation(args, model):
+    """An operation scene (docs/operations.md): large motions of the drives."""
+    from ..errors import AnalysisError
+    from ..analysis.operation.integrate import simulate
+    from ..analysis.operation.output import plot, table, write_csv
+    from ..outputs.report import dumps
+    if args.archive or args.xdmf:
+        from ..errors import ModelError
+        raise ModelError("--archive and --xdmf are not written for operation scenes yet; "
+                         "use --json, --csv or --plots")
+    progress = _Progress()
+    failed = None
+    try:
+        result = simulate(model, progress=progress)
+    except AnalysisError as exc:
+        failed, result = exc, getattr(exc, "result", None)
+        if result is None:
+            raise
+    finally:
+        progress.close()
+    print(dumps(result.to_dict()) if args.json else table(result))
+    written = []
+    if args.csv:
+        written.append(write_csv(args.csv, result))
+    if args.plots:
+        written += plot(args.plots, result)
+    for path in written:
+        print(f"wrote {path}", file=sys.stderr)
+    if failed is not None:
+        raise failed
+    return 0
+
+
 def run(args):
     from ..model import load
     from ..outputs.report import dumps
@@ -58,6 +93,8 @@ def run(args):
     from ._outputs import check_outputs
     model = load(args.file)
     check_outputs(args, model)
+    if model.analysis.get("type") == "operation":
+        return run_operation(args, model)
     progress = _Progress()
     try:
         result = simulate(model, progress=progress)

@@ -103,11 +103,105 @@ def rope_force(x, span_a, span_b, falls, rope, EA, L0, extra=0.0):
     of every span). The linear core calls this at the reference positions for its rows
     and lengths; the large-motion engine at every step.
     """
-    e, l = span_geometry(x, span_a, span_b)
     falls = np.asarray(falls, dtype=float)
-    L = np.bincount(rope, weights=falls * l, minlength=len(L0)) + extra
-    taut = L > L0
-    S, c = hencky_tension(EA, L, np.where(taut, L0, L))
+    l, e, L, S = rope_spans(x, span_a, span_b, falls, rope, EA, L0, extra)
+    taut = S > 0
     fe = falls[:, None] * e
-    return RopeForce(L, np.where(taut, S, 0.0), e, l, np.hstack([-fe, fe]),
-                     np.where(taut, c, 0.0))
+    return RopeForce(L, S, e, l, np.hstack([-fe, fe]),
+                     np.where(taut, hencky_tension(EA, L, L)[1], 0.0))
+
+
+def rope_spans(x, span_a, span_b, falls, rope, EA, L0, extra=0.0, taut=None):
+    """The span-level state of all ropes: span lengths l (ns,), unit vectors e (ns, 3),
+    rope lengths L (nr,) through all falls plus `extra`, and tensions S (nr,),
+    S = EA ln(L / L0) where `taut` (default: L > L0), else 0. The large-motion engine's
+    hot path (it passes `taut` as its event logic decides); `rope_force` adds the rows."""
+    d = x[span_b] - x[span_a]
+    l = np.sqrt(np.einsum("ij,ij->i", d, d))
+    e = d / l[:, None]
+    L = np.bincount(rope, weights=falls * l, minlength=len(L0)) + extra
+    if taut is None:
+        taut = L > L0
+    S = np.where(taut, EA * np.log(L / L0), 0.0)
+    return l, e, L, S
+
+
+def projected_tangent(w, e, D):
+    """sum_s w_s D_s^T (I - e_s e_s^T) D_s: the tension (geometric) stiffness of spans
+    with weights w = f S / l, on coordinates whose span-end difference is D_s (3, n)."""
+    eD = np.einsum("si,sia->sa", e, D)
+    return np.einsum("s,sia,sib->ab", w, D, D) - np.einsum("s,sa,sb->ab", w, eD, eD)
+
+
+def rope_state(x, span_a, span_b, falls, rope, EA, L0, extra=None, taut=None):
+    """Lengths, forces, gradient rows and tangent stiffness of all ropes at positions x.
+
+    Parameters
+    ----------
+    x : (n, 3) node positions (current geometry).
+    span_a, span_b : (ns,) node indices of each span's ends.
+    falls : (ns,) multiplicity of each span (tackle falls).
+    rope : (ns,) index of the rope each span belongs to (0 .. nr-1).
+    EA : (nr,) axial rigidity of one fall.
+    L0 : (nr,) unstretched length of each rope.
+    extra : (nr,) length not in the spans (e.g. on the drum, terminations), or None.
+    taut : (nr,) bool, which ropes carry force; None: those with L > L0.
+
+    Returns
+    -------
+    L : (nr,) current length through all falls, `sum f |x_b - x_a| + extra`.
+    S : (nr,) force, `EA ln(L/L0)` where taut, else 0 (tension only).
+    r : (nr, n, 3) gradient dL/dx (the elongation row of the linear core).
+    K : (3n, 3n) tangent stiffness `sum EA/L r r^T + S d r/dx`, the span blocks
+        `S f / l (I - e e^T)` on (b, b), (a, a) and minus on (a, b), (b, a).
+    """
+    x = np.asarray(x, dtype=float)
+    n, nr = len(x), len(EA)
+    d = x[span_b] - x[span_a]
+    l = np.sqrt(np.einsum("ij,ij->i", d, d))
+    e = d / l[:, None]
+    L = np.bincount(rope, weights=falls * l, minlength=nr)
+    if extra is not None:
+        L = L + extra
+    if taut is None:
+        taut = L > L0
+    S, c = hencky_tension(EA, L, L0)
+    S = np.where(taut, S, 0.0)
+    c = np.where(taut, c, 0.0)
+    fe = falls[:, None] * e
+    r = np.zeros((nr, n, 3))
+    np.add.at(r, (rope, span_b), fe)
+    np.add.at(r, (rope, span_a), -fe)
+    rf = r.reshape(nr, 3 * n)
+    K = (rf.T * c) @ rf
+    # span geometric blocks (f S / l)(I - e e^T)
+    g = (falls * S[rope] / l)[:, None, None] * (np.eye(3) - e[:, :, None] * e[:, None, :])
+    K4 = K.reshape(n, 3, n, 3)
+    for (i, j, sgn) in ((span_a, span_a, 1.0), (span_b, span_b, 1.0),
+                        (span_a, span_b, -1.0), (span_b, span_a, -1.0)):
+        np.add.at(K4, (i, slice(None), j, slice(None)), sgn * g)
+    return L, S, r, K
+
+
+def spring_state(x, node_a, node_b, k, d_ref, N_ref):
+    """Axial springs between nodes: force N = N_ref + k (d - d_ref) along the current
+    direction (tension positive), gradient rows and tangent `k e e^T + N/d (I - e e^T)`.
+
+    Returns d (m,), N (m,), r (m, n, 3), K (3n, 3n)."""
+    n, m = len(x), len(k)
+    dv = x[node_b] - x[node_a]
+    d = np.sqrt(np.einsum("ij,ij->i", dv, dv))
+    e = dv / d[:, None]
+    N = N_ref + k * (d - d_ref)
+    r = np.zeros((m, n, 3))
+    idx = np.arange(m)
+    r[idx, node_b] += e
+    r[idx, node_a] -= e
+    rf = r.reshape(m, 3 * n)
+    K = (rf.T * k) @ rf
+    g = (N / d)[:, None, None] * (np.eye(3) - e[:, :, None] * e[:, None, :])
+    K4 = K.reshape(n, 3, n, 3)
+    for (i, j, sgn) in ((node_a, node_a, 1.0), (node_b, node_b, 1.0),
+                        (node_a, node_b, -1.0), (node_b, node_a, -1.0)):
+        np.add.at(K4, (i, slice(None), j, slice(None)), sgn * g)
+    return d, N, r, K

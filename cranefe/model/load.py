@@ -31,7 +31,7 @@ MAX_ROPE_ELEMENTS_TOTAL = 2_000_000   # rope_mass x every fall of every rope wit
 # Magnitudes a number in a file may have: products and quotients of a few of them stay
 # far inside double precision (1e308), so no inf or 0 appears in the arrays.
 MIN_NUMBER, MAX_NUMBER = 1e-60, 1e60
-ANALYSIS_TYPES = ("modes", "damping", "transient", "luffing")
+ANALYSIS_TYPES = ("modes", "damping", "transient", "luffing", "operation")
 
 
 def load(path, text=None):
@@ -454,7 +454,8 @@ def _joints(data, c):
     joints = []
     for k, j in enumerate(r.listing(data.get("joints", []) or [], "joints")):
         e = f"joints[{k}]"
-        r.keys(j, e, {"type", "bodies", "at", "axis"}, required=("type", "bodies", "at"))
+        r.keys(j, e, {"type", "bodies", "at", "axis", "name", "range", "range_deg"},
+               required=("type", "bodies", "at"))
         if j["type"] not in JOINT_TYPES:
             r.fail(f"{e}.type", f"unknown joint type {j['type']!r}; use one of "
                    f"{', '.join(JOINT_TYPES)}")
@@ -482,8 +483,14 @@ def _joints(data, c):
                 r.fail(f"{e}.axis", "a slider in a plane: xz model slides in the plane (y = 0)")
         elif "axis" in j:
             r.fail(f"{e}.axis", f"a {j['type']} joint has no axis; remove it")
-        joints.append(Joint(j["type"], (b1, b2), at, axis, e))
+        jname = r.name(j["name"], f"{e}.name") if "name" in j else None
+        joints.append(Joint(j["type"], (b1, b2), at, axis, e, jname,
+                            _joint_range(j, e, r)))
 
+    named = [j.name for j in joints if j.name is not None]
+    for k, j in enumerate(joints):
+        if j.name is not None and named.count(j.name) > 1:
+            r.fail(f"{j.entry}.name", f"joint name '{j.name}' is used twice; rename one")
     return joints
 
 
@@ -576,7 +583,7 @@ def _drums(c):
         if "node" in names.kinds.get(dname, {}):
             r.fail(e, f"'{dname}' is also a node name; rope paths need drum names distinct "
                    "from node names: rename the drum")
-        r.keys(d, e, {"node", "radius", "inertia", "motor", "brake"},
+        r.keys(d, e, {"node", "radius", "inertia", "motor", "brake", "rope_reserve"},
                required=("node", "radius", "inertia"))
         motor = d.get("motor") or {}
         r.keys(motor, f"{e}.motor", {"rotor_inertia", "gear_ratio"},
@@ -588,7 +595,9 @@ def _drums(c):
             r.number(motor.get("rotor_inertia", 0.0), f"{e}.motor.rotor_inertia",
                      nonneg=True),
             r.number(motor.get("gear_ratio", 1.0), f"{e}.motor.gear_ratio", positive=True),
-            r.boolean(d.get("brake", False), f"{e}.brake")))
+            r.boolean(d.get("brake", False), f"{e}.brake"),
+            r.number(d["rope_reserve"], f"{e}.rope_reserve", nonneg=True)
+            if "rope_reserve" in d else float("inf")))
         names.add("drum", dname, di)
 
     return drums
@@ -657,6 +666,30 @@ def _build_model(data, file, text, r):
         masses=masses, bodies=tuple(bodies), joints=tuple(joints), springs=tuple(springs),
         drums=tuple(drums), ropes=tuple(ropes), members=tuple(members),
         linear_drives=tuple(linear), effects=effects)
+
+
+def _joint_range(j, e, r):
+    """The travel of a slider (m along its axis) or the turn of a hinge (rad; or
+    `range_deg`) from the reference geometry, [min, max] with min <= 0 <= max; None if
+    not given (docs/operations.md: a driven slider needs one)."""
+    keys = [k for k in ("range", "range_deg") if k in j]
+    if not keys:
+        return None
+    if len(keys) > 1:
+        r.fail(e, "give range or range_deg, not both")
+    k = keys[0]
+    if j["type"] not in ("slider", "hinge"):
+        r.fail(f"{e}.{k}", f"a {j['type']} joint does not move; only a slider or a hinge "
+               "has a range")
+    if k == "range_deg" and j["type"] != "hinge":
+        r.fail(f"{e}.{k}", "a slider's range is a length: give range: [min, max] in m")
+    lo, hi = r.vector(j[k], f"{e}.{k}", 2)
+    if k == "range_deg":
+        lo, hi = np.radians(lo), np.radians(hi)
+    if not lo <= 0 <= hi:
+        r.fail(f"{e}.{k}", f"[{j[k][0]:g}, {j[k][1]:g}] must contain 0 (the reference "
+               "position of the model file) and have min <= max")
+    return np.array([lo, hi])
 
 
 def _inertia(v, entry, planar, r, allow_zero):

@@ -51,6 +51,8 @@ class Joint:
     at: int                  # node index
     axis: np.ndarray         # (3,) unit vector (hinge, slider), else None
     entry: str               # "joints[3]" for messages
+    name: str = None         # optional name (operation scenes drive joints by name)
+    range: np.ndarray = None  # (2,) travel from the reference: m (slider), rad (hinge)
 
 
 @dataclass(frozen=True)
@@ -74,6 +76,8 @@ class Drum:
     rotor_inertia: float     # at motor speed
     gear_ratio: float
     brake: bool
+    rope_reserve: float = float("inf")   # m of rope on the drum that can be paid out
+                                         #   beyond the reference state
 
     @property
     def reduced_inertia(self):

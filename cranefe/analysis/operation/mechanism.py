@@ -1,0 +1,576 @@
+"""The equations of an operation scene in its coordinates (docs/operations.md).
+
+Coordinates q: the Cartesian positions of the point masses not carried by bodies (3 each,
+2 in a plane: xz model; with `sway: false` only the height), then the angles of drums
+driven by a torque or a motor. Bodies move rigidly by the prescribed joint motions
+(exact rotations, `cranefe.elements.hinge_motion`); a prescribed drum's angle is a known function
+of time; every other joint and drum is held. Ropes and axial springs that touch a
+point mass carry force; the others only connect bodies whose motion is prescribed.
+
+Ropes: S = EA ln(L/L0) (tension only), L through all falls at the current geometry,
+L0 = L0_ref - sum R theta / lambda_ref (a drum winds R theta of rope at the static
+stretch lambda_ref = L_ref / L0_ref), torque on the drum (S + S_damping) R;
+L0_ref from the static tension S0 of the reference geometry, so the loads hang at rest
+at t = 0.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import ModelError
+from ...model.model import GROUND
+from ... import elements as kernels
+
+
+@dataclass
+class Eval:
+    """Forces and tangents at one (t, q, v)."""
+
+    t: float
+    F: np.ndarray            # (n,) generalised force (gravity, ropes, springs, damping, drives)
+    K: np.ndarray            # (n, n) -dF/dq
+    C: np.ndarray            # (n, n) -dF/dv
+    X: np.ndarray            # (nn, 3) node positions
+    V: np.ndarray            # (nn, 3) node velocities
+    L: np.ndarray            # (nr,) rope lengths
+    L0: np.ndarray           # (nr,) unstretched lengths
+    S: np.ndarray            # (nr,) elastic rope forces
+    Sd: np.ndarray           # (nr,) damping forces (along the rope)
+    edot: np.ndarray         # (nr,) elongation rate (m/s)
+    N: np.ndarray            # (ns,) spring forces (elastic + damping)
+    theta: np.ndarray        # (nd,) all drum angles
+    omega: np.ndarray        # (nd,) all drum speeds
+    drive_torque: np.ndarray  # (nd,) torque of torque/motor drives on their drums
+    P_drive: float           # power fed in by the drives (W)
+    P_diss: float            # power dissipated by the dashpots (W)
+    P_wound: float           # elastic energy carried onto the drums with the rope (W)
+    T_guided: float = 0.0    # horizontal kinetic energy of loads without sway (J)
+
+
+class Mechanism:
+    def __init__(self, model, spec):
+        self.model, self.spec = model, spec
+        file = model.file
+        self.nn = len(model.node_names)
+        g = np.asarray(model.gravity, float)
+        self.g = g
+        gn = np.linalg.norm(g)
+        self.up = -g / gn if gn > 0 else np.array([0.0, 0.0, 1.0])
+        self.sway = model.effects.sway
+        self.warnings = []
+        if not model.effects.rope_elasticity:
+            raise ModelError("operation scenes with inextensible ropes (rope_elasticity: "
+                             "false) are not built yet; use elastic ropes (a stiff EA)",
+                             model.scene_file or file, "effects.rope_elasticity")
+        if model.effects.rope_mass:
+            self.warnings.append("rope_mass is not used by operation scenes yet: ropes are "
+                                 "massless")
+        self._tree(model)
+        self._nodes(model)
+        self._elements(model)
+        self._drums(model)
+        self._projections()
+        self._static(model)
+
+    # ----------------------------------------------------------------- kinematics
+    def _tree(self, model):
+        """Spanning tree of bodies from the ground over the joints; a driven joint must
+        be a tree joint whose loop (if any) is closed only by held joints of static
+        bodies."""
+        nb = len(model.bodies)
+        driven = {d.index: d for d in self.spec.drives if d.target != "drum"}
+        parent = {}
+        order = []
+        frontier = [GROUND]
+        used = set()
+        while frontier:
+            b = frontier.pop(0)
+            for k, j in enumerate(model.joints):
+                if k in used or b not in j.bodies:
+                    continue
+                other = j.bodies[1] if j.bodies[0] == b else j.bodies[0]
+                if other == GROUND or other in parent:
+                    continue
+                used.add(k)
+                parent[other] = (b, k)
+                order.append(other)
+                frontier.append(other)
+        self.parent, self.order = parent, order
+        moving = set()
+        for b in order:
+            p, k = parent[b]
+            if k in driven or p in moving:
+                moving.add(b)
+        self.moving = moving
+        for k, j in enumerate(model.joints):
+            if k in used:
+                continue
+            if any(b in moving for b in j.bodies if b != GROUND):
+                raise ModelError(
+                    f"{j.entry} closes a loop of bodies that the drives move; closed "
+                    "linkages are not solved by operation scenes yet (drive a joint "
+                    "outside the loop)", model.scene_file or model.file,
+                    driven[next(iter(driven))].entry if driven else None)
+        for k, d in driven.items():
+            if k not in used:
+                raise ModelError(f"{model.joints[k].entry} closes a loop of bodies: "
+                                 "driving it is not supported", model.scene_file, d.entry)
+        free_bodies = [model.bodies[b].name for b in range(nb) if b not in parent]
+        self.free_bodies = free_bodies
+        self.driven_joints = driven
+
+    def body_motions(self, t):
+        """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity)."""
+        out = {GROUND: kernels.IDENTITY_MOTION}
+        m = self.model
+        for b in self.order:
+            p, k = self.parent[b]
+            j = m.joints[k]
+            d = self.driven_joints.get(k)
+            if d is None:
+                out[b] = out[p]
+                continue
+            s, ds, dds = d.motion(t)
+            sign = 1.0 if j.bodies[1] == b else -1.0    # motion of bodies[1] rel. bodies[0]
+            if j.type == "hinge":
+                jm = kernels.hinge_motion(j.axis, m.coords[j.at], sign * s, sign * ds,
+                                          sign * dds)
+            else:
+                jm = kernels.slider_motion(j.axis, sign * s, sign * ds, sign * dds)
+            out[b] = kernels.compose(out[p], jm)
+        return out
+
+    def _nodes(self, model):
+        nn = self.nn
+        depth = {GROUND: 0}
+        for b in self.order:
+            depth[b] = depth[self.parent[b][0]] + 1
+        carrier = np.full(nn, -2)          # body index, GROUND, or -2 (not kinematic)
+        for i in model.ground:
+            carrier[i] = GROUND
+        for bi, b in enumerate(model.bodies):
+            if bi not in depth:
+                continue
+            for i in b.nodes:
+                if carrier[i] == -2 or (carrier[i] != GROUND and depth[bi] > depth.get(
+                        carrier[i], -1)):
+                    carrier[i] = bi
+        for k, j in enumerate(model.joints):
+            if carrier[j.at] == -2:
+                carrier[j.at] = j.bodies[0] if j.bodies[0] in depth else j.bodies[1]
+        for bi, b in enumerate(model.bodies):
+            if bi not in depth:
+                raise ModelError(f"body '{b.name}' has no joint to the ground or to other "
+                                 "bodies: free bodies are not solved by operation scenes "
+                                 "yet", model.file, f"bodies.{b.name}")
+        self.carrier = carrier
+        mass_of = dict(zip(model.masses.nodes.tolist(), model.masses.mass.tolist()))
+        self.free = np.array([i for i in model.masses.nodes if carrier[i] == -2], dtype=int)
+        self.free_mass = np.array([mass_of[i] for i in self.free])
+        self.kin = np.flatnonzero(carrier != -2)
+        self.mass_nodes = np.array(sorted(mass_of), dtype=int)
+
+    def _elements(self, model):
+        """Ropes and axial springs that touch a point mass (the others join bodies whose
+        motion is prescribed: no force is computed for them).
+
+        Length: gathers every element kind's arrays (ropes, springs, point masses,
+        drums) in the order the state vector lists them.
+        """
+        free = set(self.free.tolist())
+        kin = set(self.kin.tolist())
+        ok = free | kin
+        file = model.scene_file or model.file
+        act, a, b, f, rid = [], [], [], [], []
+        for k, rp in enumerate(model.ropes):
+            nodes = set(rp.span_a.tolist()) | set(rp.span_b.tolist())
+            if not nodes & free:
+                continue
+            bad = nodes - ok
+            if bad:
+                raise ModelError(f"rope '{rp.name}' runs over the massless free node(s) "
+                                 f"{', '.join(model.node_names[i] for i in sorted(bad))}; "
+                                 "operation scenes need every rope node on a body, the "
+                                 "ground or a point mass (massless blocks: not yet)", file,
+                                 f"ropes.{rp.name}")
+            rid += [len(act)] * len(rp.falls)
+            act.append(k)
+            a += rp.span_a.tolist()
+            b += rp.span_b.tolist()
+            f += rp.falls.tolist()
+        self.ropes = np.array(act, dtype=int)
+        self.span_a, self.span_b = np.array(a, dtype=int), np.array(b, dtype=int)
+        self.falls = np.array(f, dtype=float)
+        self.span_rope = np.array(rid, dtype=int)
+        self.span_ref = np.linalg.norm(model.coords[self.span_b] - model.coords[self.span_a],
+                                       axis=1) if len(b) else np.zeros(0)
+        R = [model.ropes[k] for k in act]
+        self.EA = np.array([r.EA for r in R])
+        self.extra = np.array([r.extra_length for r in R])
+        self.psi = np.array([r.psi for r in R])
+        inactive = [r.name for k, r in enumerate(model.ropes) if k not in act]
+        self.inactive_ropes = inactive
+        sp = [(k, s) for k, s in enumerate(model.springs) if s.type == "axial"
+              and set(s.nodes) & free]
+        for k, s in sp:
+            bad = set(s.nodes) - ok
+            if bad:
+                raise ModelError(f"spring '{s.name}' ends at a massless free node; not "
+                                 "supported by operation scenes yet", file,
+                                 f"springs.{s.name}")
+        self.springs = [k for k, _ in sp]
+        self.sp_a = np.array([s.nodes[0] for _, s in sp], dtype=int)
+        self.sp_b = np.array([s.nodes[1] for _, s in sp], dtype=int)
+        self.sp_k = np.array([s.stiffness for _, s in sp])
+        self.sp_psi = np.array([s.psi for _, s in sp])
+        self.sp_dref = np.linalg.norm(model.coords[self.sp_b] - model.coords[self.sp_a],
+                                      axis=1) if sp else np.zeros(0)
+        # coordinates of the point masses; with sway off the height only, the horizontal
+        # position following the node the mass hangs from
+        nf = len(self.free)
+        planar = model.planar
+        dirs = []          # (mass k, unit vector)
+        self.hang = np.full(nf, -1)
+        for k, i in enumerate(self.free):
+            above = self._above(model, i)
+            self.hang[k] = above
+            if self.sway:
+                axes = [np.array([1.0, 0, 0]), np.array([0, 0, 1.0])] if planar else \
+                    list(np.eye(3))
+                dirs += [(k, ax) for ax in axes]
+            else:
+                dx = model.coords[above] - model.coords[i]
+                hor = dx - (dx @ self.up) * self.up
+                if np.linalg.norm(hor) > 1e-6 * np.linalg.norm(dx):
+                    raise ModelError(
+                        f"with sway: false the load at node '{model.node_names[i]}' must "
+                        f"hang vertically below '{model.node_names[above]}' (it is off by "
+                        f"{np.linalg.norm(hor):.4g} m); move it or turn sway on", file,
+                        f"nodes.{model.node_names[i]}")
+                dirs.append((k, self.up.copy()))
+        self.nx = len(dirs)
+        E = np.zeros((3 * nf, self.nx))
+        for c, (k, ax) in enumerate(dirs):
+            E[3 * k:3 * k + 3, c] = ax
+        self.E = E
+        self.qx_ref = E.T @ model.coords[self.free].ravel()
+        # with sway off: the kinematic root each mass's horizontal position follows
+        self.root = np.array([self._root(model, k) for k in range(nf)], dtype=int)
+
+    def _above(self, model, i):
+        """The node a point mass hangs from: the other end of its highest rope span or
+        axial spring (most nearly against gravity)."""
+        best, score = -1, -np.inf
+        ends = list(zip(self.span_a, self.span_b)) + list(zip(self.sp_a, self.sp_b))
+        for a, b in ends:
+            if i not in (a, b):
+                continue
+            o = b if a == i else a
+            d = model.coords[o] - model.coords[i]
+            s = d @ self.up / (np.linalg.norm(d) + 1e-300)
+            if s > score:
+                best, score = o, s
+        if best < 0:
+            raise ModelError(f"the point mass at node '{model.node_names[i]}' hangs on no "
+                             "rope or axial spring; an operation scene moves masses on "
+                             "ropes", model.scene_file or model.file,
+                             f"masses.{model.node_names[i]}")
+        return best
+
+    def _root(self, model, k):
+        seen = set()
+        i = self.free[k]
+        while self.carrier[i] == -2:
+            if i in seen:
+                return -1
+            seen.add(i)
+            i = self.hang[list(self.free).index(i)]
+        return i
+
+    def _drums(self, model):
+        nd = len(model.drums)
+        self.nd = nd
+        self.drum_drive = [None] * nd
+        for d in self.spec.drives:
+            if d.target == "drum":
+                self.drum_drive[d.index] = d
+        self.qdrums = [k for k in range(nd) if self.drum_drive[k] is not None
+                       and self.drum_drive[k].kind != "profile"]
+        self.n = self.nx + len(self.qdrums)
+        # rope end -> drum: (active rope, drum, radius)
+        ends = []
+        for j, k in enumerate(self.ropes):
+            for dd in model.ropes[k].end_drums:
+                ends.append((j, dd, model.drums[dd].radius))
+        self.rope_drum = np.array([e[0] for e in ends], dtype=int)
+        self.drum_of_end = np.array([e[1] for e in ends], dtype=int)
+        self.end_radius = np.array([e[2] for e in ends], dtype=float)
+        self.J = np.array([model.drums[k].reduced_inertia for k in self.qdrums])
+        self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
+        self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3), self.J])
+
+    # ----------------------------------------------------------------- state at t
+    def kinematics(self, t):
+        """Positions, velocities, accelerations of kinematic nodes at t, and the
+        prescribed drums' (theta, omega, alpha)."""
+        mot = self.body_motions(t)
+        X0 = self.model.coords
+        X = np.zeros((self.nn, 3))
+        V = np.zeros((self.nn, 3))
+        A = np.zeros((self.nn, 3))
+        for b, (R, dR, ddR, p, dp, ddp) in mot.items():
+            idx = self.kin[self.carrier[self.kin] == b]
+            if len(idx):
+                Xr = X0[idx]
+                X[idx] = Xr @ R.T + p
+                V[idx] = Xr @ dR.T + dp
+                A[idx] = Xr @ ddR.T + ddp
+        th = np.zeros((self.nd, 3))
+        for k, d in enumerate(self.drum_drive):
+            if d is not None and d.kind == "profile":
+                th[k] = d.motion(t)
+        return X, V, A, th
+
+    def place(self, t, q, v, kin=None):
+        """Node positions and velocities (nn, 3) and all drum angles/speeds."""
+        X, V, _, th = self.kinematics(t) if kin is None else kin
+        X, V = X.copy(), V.copy()
+        nf = len(self.free)
+        if nf:
+            P = (self.E @ q[:self.nx]).reshape(nf, 3)
+            W = (self.E @ v[:self.nx]).reshape(nf, 3)
+            if not self.sway:
+                up = self.up
+                H = np.eye(3) - np.outer(up, up)
+                X0 = self.model.coords
+                base = (X0[self.free] + X[self.root] - X0[self.root]) @ H.T
+                P = P + base
+                W = W + V[self.root] @ H.T
+            X[self.free] = P
+            V[self.free] = W
+        theta, omega = th[:, 0].copy(), th[:, 1].copy()
+        nq = self.nx
+        for c, k in enumerate(self.qdrums):
+            theta[k], omega[k] = q[nq + c], v[nq + c]
+        return X, V, theta, omega
+
+    def unstretched(self, theta):
+        """(nr,) L0 and dL0/dtheta per rope end: L0_ref - sum R theta / lambda_ref."""
+        L0 = self.L0_ref.copy()
+        if len(self.rope_drum):
+            fac = self.end_radius / self.lam_ref[self.rope_drum]
+            np.subtract.at(L0, self.rope_drum, fac * theta[self.drum_of_end])
+        return L0
+
+    def _projections(self):
+        """Constant maps of the hot path: span-end difference to coordinates D (ns, 3,
+        nx), span -> rope incidence A (nr, ns), drum radii Rd (nr, nd), gravity."""
+        nf = len(self.free)
+        where = {int(i): k for k, i in enumerate(self.free)}
+        ns = len(self.span_a)
+        D = np.zeros((ns, 3, self.nx))
+        for s_, (a, b) in enumerate(zip(self.span_a, self.span_b)):
+            if b in where:
+                D[s_] += self.E[3 * where[b]:3 * where[b] + 3]
+            if a in where:
+                D[s_] -= self.E[3 * where[a]:3 * where[a] + 3]
+        self.D = D
+        nr = len(self.ropes)
+        self.A = np.zeros((nr, ns))
+        self.A[self.span_rope, np.arange(ns)] = 1.0
+        self.kin_a = ~np.isin(self.span_a, self.free)
+        self.kin_b = ~np.isin(self.span_b, self.free)
+        self.Rd = np.zeros((nr, self.nd))
+        if len(self.rope_drum):
+            np.add.at(self.Rd, (self.rope_drum, self.drum_of_end), self.end_radius)
+        self.Fg = self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, nf))
+        self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
+
+    def evaluate(self, t, q, v, taut, kin=None, damping=True):
+        """Length: the engine's hot path (residual and tangent of one Newton iteration)
+        kept in one frame to avoid call overhead per step.
+        """
+        kin = self.kinematics(t) if kin is None else kin
+        X, V, theta, omega = self.place(t, q, v, kin)
+        n, nx = self.n, self.nx
+        L0 = self.unstretched(theta)
+        l, e, L, S = kernels.rope_spans(X, self.span_a, self.span_b, self.falls,
+                                        self.span_rope, self.EA, L0, self.extra, taut)
+        nr = len(L)
+        lam = L / L0
+        fe = self.falls[:, None] * e                         # span rows f e
+        G = self.A @ np.einsum("si,sij->sj", fe, self.D)     # (nr, nx) dL/dq_x
+        Rd = self.Rd
+        dV = V[self.span_b] - V[self.span_a]
+        edot = self.A @ np.einsum("si,si->s", fe, dV) + Rd @ omega   # elongation rate
+        F = np.zeros(n)
+        K = np.zeros((n, n))
+        C = np.zeros((n, n))
+        cL = np.where(taut, self.EA / L, 0.0)
+        F[:nx] = self.Fg - G.T @ S
+        # tangent: EA/L G^T G + sum f S / l (I - e e^T) on the span ends
+        K[:nx, :nx] = (G.T * cL) @ G + kernels.projected_tangent(
+            self.falls * S[self.span_rope] / l, e, self.D)
+        # damping: b = psi c / (2 pi w), c = EA/L, w the rope's axial frequency now
+        Sd = np.zeros(nr)
+        b = np.zeros(nr)
+        if damping and self.damped and nr:
+            w2 = cL * np.einsum("rj,rj->r", G, G / self.M[:nx])
+            for cc, k in enumerate(self.qdrums):
+                w2 = w2 + cL * Rd[:, k] ** 2 / self.J[cc]
+            w = np.sqrt(np.maximum(w2, 0.0))
+            b = np.where(w > 0, self.psi * cL / (2 * np.pi * np.where(w > 0, w, 1.0)), 0.0)
+            Sd = b * edot
+            F[:nx] -= G.T @ Sd
+            C[:nx, :nx] += (G.T * b) @ G
+        # drums with a coordinate: the ropes' torque -(S + Sd) R
+        dS = np.where(taut, self.EA / (self.lam_ref * L0), 0.0)     # dS/d(R theta)
+        drive_torque = np.zeros(self.nd)
+        for cc, k in enumerate(self.qdrums):
+            i = nx + cc
+            Rk = Rd[:, k]
+            F[i] -= Rk @ (S + Sd)
+            K[i, :nx] += (Rk * cL) @ G
+            K[:nx, i] += G.T @ (Rk * dS)
+            K[i, i] += (Rk ** 2 * dS).sum()
+            C[i, :nx] += (Rk * b) @ G
+            C[:nx, i] += G.T @ (Rk * b)
+            C[i, i] += (Rk ** 2 * b).sum()
+            d = self.drum_drive[k]
+            if d.kind == "torque":
+                tq, dtq = d.torque(t)[0], 0.0
+            else:
+                gr = self.gear[k]
+                Mm, dM = d.motor.torque(gr * omega[k])
+                tq, dtq = gr * Mm, gr * gr * dM
+            drive_torque[k] = tq
+            F[i] += tq
+            C[i, i] -= dtq
+        # energy carried onto (off) the drums with the wound rope: the drum's work
+        # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
+        # (S lambda - w), w = EA (lambda ln lambda - lambda + 1)
+        if len(self.rope_drum):
+            wden = np.where(taut, self.EA * (lam * np.log(lam) - lam + 1), 0.0)
+            P_wound = float(((S - (S * lam - wden) / self.lam_ref) * (Rd @ omega)).sum())
+        else:
+            P_wound = 0.0
+        # power fed through kinematic nodes (moving sheaves, dead ends on bodies)
+        Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
+            np.where(self.kin_a[:, None], V[self.span_a], 0.0)
+        rVk = self.A @ np.einsum("si,si->s", fe, Vk)
+        # springs
+        N = np.zeros(len(self.sp_k))
+        if len(self.sp_k):
+            _, N, rs, Ks = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
+                                                 self.sp_dref, self.N_ref)
+            free3 = self.free3
+            rsf = rs.reshape(len(N), -1)
+            Gs = rsf[:, free3] @ self.E
+            F[:nx] -= Gs.T @ N
+            K[:nx, :nx] += self.E.T @ Ks[np.ix_(free3, free3)] @ self.E
+            if damping and self.damped:
+                ddot = np.einsum("rij,ij->r", rs, V)
+                w2 = self.sp_k * np.einsum("rj,rj->r", Gs, Gs / self.M[:nx])
+                bs = np.where(w2 > 0, self.sp_psi * self.sp_k /
+                              (2 * np.pi * np.sqrt(np.maximum(w2, 1e-300))), 0.0)
+                Nd = bs * ddot
+                F[:nx] -= Gs.T @ Nd
+                C[:nx, :nx] += (Gs.T * bs) @ Gs
+                N = N + Nd
+                Pk = np.einsum("rij,ij->r", rs[:, self.kin], V[self.kin])
+                P_sp_kin, P_sp_diss = float(N @ Pk), float(Nd @ ddot)
+            else:
+                Pk = np.einsum("rij,ij->r", rs[:, self.kin], V[self.kin])
+                P_sp_kin, P_sp_diss = float(N @ Pk), 0.0
+        else:
+            P_sp_kin = P_sp_diss = 0.0
+        # power of the drives: kinematic nodes pulled by the ropes and springs, prescribed
+        # drums, torque drives
+        P = float((S + Sd) @ rVk) + P_sp_kin
+        for k in range(self.nd):
+            d = self.drum_drive[k]
+            if d is not None and d.kind == "profile":
+                P += float(Rd[:, k] @ (S + Sd)) * omega[k]
+        P += float(drive_torque @ omega)
+        # loads without sway are guided horizontally with their carrier: the guidance
+        # does the work of their horizontal kinetic energy (the ropes hang vertically)
+        T_guided = 0.0
+        if not self.sway and len(self.free):
+            Vh = V[self.free] - np.outer(V[self.free] @ self.up, self.up)
+            T_guided = 0.5 * float(self.free_mass @ np.einsum("ij,ij->i", Vh, Vh))
+        return Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
+                    P, float(Sd @ edot) + P_sp_diss, P_wound, T_guided)
+
+    def energy(self, ev, taut):
+        """Kinetic, gravity potential and elastic energy (J)."""
+        T = 0.5 * float(self.free_mass @ np.einsum("ij,ij->i", ev.V[self.free],
+                                                   ev.V[self.free]))
+        for cc, k in enumerate(self.qdrums):
+            T += 0.5 * self.J[cc] * ev.omega[k] ** 2
+        Vg = -float(self.free_mass @ (ev.X[self.free] @ self.g))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            U = float(np.where(taut, kernels.hencky_energy(self.EA, ev.L, ev.L0), 0.0).sum())
+        if len(self.sp_k):
+            d = np.linalg.norm(ev.X[self.sp_b] - ev.X[self.sp_a], axis=1) - self.sp_dref
+            U += float((self.N_ref * d + 0.5 * self.sp_k * d * d).sum())
+        return T, Vg, U
+
+    # ----------------------------------------------------------------- static state
+    def _static(self, model):
+        """Static tensions of the reference geometry (drums held, elastic stiffness
+        only, as model-format.md "Static state"): S0 = c r u with K_e u = F_gravity; the
+        geometry must then be in equilibrium (checked). L0_ref = L_ref exp(-S0/EA)."""
+        file = model.scene_file or model.file
+        self.damped = model.effects.damping != "none"
+        nr, ns = len(self.ropes), len(self.sp_k)
+        self.L0_ref = np.ones(nr)
+        self.lam_ref = np.ones(nr)
+        self.N_ref = np.zeros(ns)
+        q0 = np.zeros(self.n)
+        q0[:self.nx] = self.qx_ref
+        X = self.place(0.0, q0, np.zeros(self.n))[0]
+        L, _, r, _ = kernels.rope_state(X, self.span_a, self.span_b, self.falls,
+                                        self.span_rope, self.EA, np.ones(nr), self.extra,
+                                        np.ones(nr, bool))
+        free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
+        G = r.reshape(nr, -1)[:, free3] @ self.E
+        c = self.EA / L
+        rows, stiff = [G], [c]
+        if ns:
+            _, _, rs, _ = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
+                                               self.sp_dref, np.zeros(ns))
+            rows.append(rs.reshape(ns, -1)[:, free3] @ self.E)
+            stiff.append(self.sp_k)
+        Rall = np.vstack(rows) if rows else np.zeros((0, self.nx))
+        call = np.concatenate(stiff)
+        Fg = self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, len(self.free)))
+        Ke = (Rall.T * call) @ Rall
+        u = np.linalg.lstsq(Ke, Fg, rcond=1e-12)[0]
+        force = call * (Rall @ u)
+        resid = Fg - Rall.T @ force
+        weight = np.abs(Fg).max(initial=0.0)
+        if weight > 0 and np.abs(resid).max() > 1e-8 * weight:
+            k = int(np.argmax(np.abs(self.E[:, int(np.argmax(np.abs(resid)))]))) // 3
+            node = self.model.node_names[self.free[k]]
+            raise ModelError(f"the model's geometry is not a static equilibrium: the ropes "
+                             f"and springs cannot hold the weight at node '{node}' there "
+                             f"(unbalanced {np.abs(resid).max():.4g} N); hang the loads "
+                             "below their sheaves (an operation starts at rest)", file,
+                             f"nodes.{node}")
+        S0 = force[:nr]
+        self.N_ref = force[nr:]
+        for j in np.flatnonzero(S0 < 0):
+            raise ModelError(f"rope '{model.ropes[self.ropes[j]].name}' would be in "
+                             f"compression at rest ({S0[j]:.4g} N)", file,
+                             f"ropes.{model.ropes[self.ropes[j]].name}")
+        self.S0 = S0
+        self.L_ref = L
+        self.lam_ref = np.exp(S0 / self.EA)
+        self.L0_ref = L / self.lam_ref
+        self.q0 = q0
+        self.taut0 = S0 > 0
+        # what holds each drum at rest: the ropes' torque S0 R
+        self.hold_torque = np.zeros(self.nd)
+        for j, dd, R in zip(self.rope_drum, self.drum_of_end, self.end_radius):
+            self.hold_torque[dd] += R * S0[j]

@@ -1,0 +1,268 @@
+"""The keys of an operation scene, checked (`analysis: {type: operation, ...}`).
+
+The model loader accepts `type: operation` and forwards its keys; every check and every
+message about them lives here (docs/operations.md lists the keys). Errors are
+`ModelError(message, scene file, entry)` with entries such as
+``analysis.drives.trolley.profile.v_max``.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...model.load import _Reader
+from ..transient.scene import Motor, Profile, _motor, _profile
+from . import profiles
+
+KEYS = {"type", "duration", "tolerance", "max_step", "output_step", "drives", "initial"}
+DEFAULT_TOLERANCE = 1e-7       # local error per step, relative to the model's size
+PROFILE_KEYS = {
+    "trapezoid": ({"distance", "v_max"}, {"a_max", "ramp", "start"}),
+    "s_curve": ({"distance", "v_max", "a_max", "j_max"}, {"start"}),
+    "table": ({"speed"}, set()),
+}
+ANGLE_KEYS = {"distance", "v_max", "a_max", "j_max", "speed"}   # _deg variants on hinges
+UNITS = {"drum": ("rad", "rad/s"), "hinge": ("rad", "rad/s"), "slider": ("m", "m/s")}
+
+
+@dataclass(frozen=True)
+class Drive:
+    """What moves one drum or joint (docs/operations.md, "Drives")."""
+
+    name: str
+    target: str               # drum | hinge | slider
+    index: int                # into model.drums or model.joints
+    kind: str                 # profile | torque | motor
+    motion: profiles.Motion = None   # profile: position (rad or m) against time
+    torque: Profile = None    # torque: N m at the drum against time
+    motor: Motor = None
+    entry: str = ""
+
+    @property
+    def units(self):
+        return UNITS[self.target]
+
+
+@dataclass(frozen=True)
+class Operation:
+    duration: float
+    tolerance: float          # local position error per step, relative to the model size
+    max_step: float
+    output_step: float
+    drives: tuple             # Drive
+
+    @property
+    def breakpoints(self):
+        """Times where a prescribed motion's acceleration or jerk jumps (steps end
+        there), and where torque tables have kinks."""
+        ts = [d.motion.breakpoints for d in self.drives if d.motion is not None]
+        ts += [d.torque.breakpoints for d in self.drives if d.torque is not None]
+        t = np.unique(np.concatenate(ts)) if ts else np.zeros(0)
+        return t[(t > 0) & (t < self.duration)]
+
+    @property
+    def motion_end(self):
+        """When the last prescribed drive stops (0 if none moves; inf if one never stops)."""
+        ends = [d.motion.end for d in self.drives if d.motion is not None]
+        return max(ends) if ends else 0.0
+
+
+def parse(model):
+    """The operation analysis of a scene `model`, checked."""
+    a = model.analysis
+    file = model.scene_file or model.file
+    r = _Reader(file)
+    r.keys(a, "analysis", KEYS, required=("duration",))
+    if a.get("type") != "operation":
+        r.fail("analysis.type", "this is not an operation scene: give analysis: {type: "
+               "operation, duration: ..., drives: {...}} (docs/operations.md)")
+    duration = r.number(a["duration"], "analysis.duration", positive=True)
+    tol = r.number(a.get("tolerance", DEFAULT_TOLERANCE), "analysis.tolerance",
+                   positive=True)
+    if tol >= 1e-2:
+        r.fail("analysis.tolerance", f"{tol:g} is not a small relative error; give e.g. "
+               "1e-7 (the default)")
+    max_step = r.number(a.get("max_step", min(duration / 50, 0.5)), "analysis.max_step",
+                        positive=True)
+    out = r.number(a.get("output_step", duration / 1000), "analysis.output_step",
+                   positive=True)
+    if a.get("initial", "static") != "static":
+        r.fail("analysis.initial", f"{a['initial']!r}: an operation starts from the static "
+               "state of the model's geometry (initial: static)")
+    raw = a.get("drives", {}) or {}
+    if not isinstance(raw, dict):
+        r.fail("analysis.drives", "must be a mapping: drive name -> {drum: NAME, profile: "
+               "{...}} or {slider: JOINT, profile: {...}} or {hinge: JOINT, profile: {...}}")
+    drives = tuple(_drive(model, r, str(name), spec, duration)
+                   for name, spec in raw.items())
+    seen = {}
+    for d in drives:
+        key = (d.target == "drum", d.index)
+        if key in seen:
+            r.fail(d.entry, f"drives the same {d.target} as drive '{seen[key]}'; give one "
+                   "drive per drum or joint")
+        seen[key] = d.name
+    return Operation(duration, tol, max_step, out, drives)
+
+
+def _joint_by_name(model, r, name, e):
+    for k, j in enumerate(model.joints):
+        if j.name == name or j.entry == name:
+            return k, j
+    names = [j.name or j.entry for j in model.joints]
+    r.fail(e, f"unknown joint '{name}'; joints of the model: {', '.join(names) or 'none'} "
+           "(name a joint in the model with name: ...)")
+
+
+def _drive(model, r, name, spec, duration):
+    e = f"analysis.drives.{name}"
+    r.keys(spec, e, {"drum", "hinge", "slider", "profile", "torque", "motor", "ramp"})
+    targets = [k for k in ("drum", "hinge", "slider") if k in spec]
+    if len(targets) != 1:
+        r.fail(e, "say what the drive moves: exactly one of drum: NAME, hinge: JOINT "
+               "(slewing, luffing) or slider: JOINT (trolley travel)")
+    target = targets[0]
+    kinds = [k for k in ("profile", "torque", "motor") if k in spec]
+    if len(kinds) != 1:
+        r.fail(e, "give exactly one of profile: {type: trapezoid|s_curve|table, ...}, "
+               "torque: ... or motor: {...} (docs/operations.md)")
+    kind = kinds[0]
+    if "ramp" in spec and kind != "torque":
+        r.fail(f"{e}.ramp", "ramp belongs to a torque; a profile has its own ramps")
+    if target == "drum":
+        names = {d.name: i for i, d in enumerate(model.drums)}
+        dname = spec["drum"]
+        if dname not in names:
+            r.fail(f"{e}.drum", f"unknown drum '{dname}'; drums of the model: "
+                   f"{', '.join(names) or 'none'}")
+        index = names[dname]
+    else:
+        index, joint = _joint_by_name(model, r, spec[target], f"{e}.{target}")
+        if joint.type != target:
+            what = "turns (slewing, luffing)" if target == "hinge" else \
+                "slides (trolley travel)"
+            r.fail(f"{e}.{target}", f"joint '{spec[target]}' ({joint.entry}) is a "
+                   f"{joint.type} joint, not a {target}: a {target} drive {what}; name a "
+                   f"{target} joint or use {joint.type if joint.type in ('hinge', 'slider') else 'another'}: ...")
+        if kind != "profile":
+            r.fail(f"{e}.{kind}", f"a {target} is driven by a motion profile in this "
+                   "version (torque and motor drives of joints: not yet)")
+    if kind == "torque":
+        ramp = r.number(spec["ramp"], f"{e}.ramp", nonneg=True) if "ramp" in spec else None
+        return Drive(name, target, index, "torque",
+                     torque=_profile(r, spec["torque"], f"{e}.torque", 1, ramp), entry=e)
+    if kind == "motor":
+        return Drive(name, target, index, "motor",
+                     motor=_motor(r, spec["motor"], f"{e}.motor"), entry=e)
+    raw = spec["profile"]
+    if isinstance(raw, list):
+        if not raw:
+            r.fail(f"{e}.profile", "an empty list of moves; give one or more profiles")
+        moves = [_motion(r, p, f"{e}.profile[{k}]", target == "hinge")
+                 for k, p in enumerate(raw)]
+        for k, mv in enumerate(moves):
+            if mv.kind == "table":
+                r.fail(f"{e}.profile[{k}]", "a speed table gives the whole history; list "
+                       "only trapezoid and s_curve moves, or give one table")
+        for k in range(1, len(moves)):
+            if moves[k].t[0] < moves[k - 1].t[-1] - 1e-12:
+                r.fail(f"{e}.profile[{k}].start", f"starts at {moves[k].t[0]:g} s, before "
+                       f"the previous move ends ({moves[k - 1].t[-1]:.6g} s)")
+        motion = profiles.combine(moves)
+    else:
+        motion = _motion(r, raw, f"{e}.profile", target == "hinge")
+    drive = Drive(name, target, index, "profile", motion=motion, entry=e)
+    _check_travel(model, r, drive, duration)
+    return drive
+
+
+def _motion(r, p, e, angles):
+    if not isinstance(p, dict):
+        r.fail(e, "must be a mapping such as {type: trapezoid, distance: 15, v_max: 0.5, "
+               "a_max: 0.25}")
+    kind = p.get("type")
+    if kind not in PROFILE_KEYS:
+        r.fail(f"{e}.type", f"{kind!r} is not one of {', '.join(PROFILE_KEYS)}")
+    need, optional = PROFILE_KEYS[kind]
+    allowed = {"type"} | need | optional
+    if angles:
+        allowed |= {f"{k}_deg" for k in (need | optional) & ANGLE_KEYS}
+    r.keys(p, e, allowed)
+    v = {}
+    for k in need | optional:
+        given = [x for x in (k, f"{k}_deg") if x in p]
+        if len(given) > 1:
+            r.fail(f"{e}.{k}", f"give {k} or {k}_deg, not both")
+        if not given:
+            if k in need:
+                r.fail(e, f"missing required key '{k}'" + (f" (or '{k}_deg')"
+                                                           if angles and k in ANGLE_KEYS
+                                                           else "") + "; add it")
+            continue
+        key = given[0]
+        scale = np.pi / 180 if key.endswith("_deg") else 1.0
+        if k == "speed":
+            rows = r.listing(p[key], f"{e}.{key}", min_len=1)
+            table = np.array([r.vector(x, f"{e}.{key}[{i}]", 2) for i, x in enumerate(rows)])
+            if np.any(np.diff(table[:, 0]) <= 0):
+                r.fail(f"{e}.{key}", "the times (first column) must increase from row to row")
+            if table[0, 0] < 0:
+                r.fail(f"{e}.{key}[0]", "times start at t >= 0")
+            v[k] = table * [1.0, scale]
+        else:
+            v[k] = r.number(p[key], f"{e}.{key}", positive=k in ("v_max", "a_max", "j_max",
+                                                                 "ramp"),
+                            nonneg=k == "start") * (1.0 if k in ("start", "ramp") else scale)
+    if kind == "trapezoid":
+        if ("a_max" in v) == ("ramp" in v):
+            r.fail(e, "give the acceleration a_max or the ramp time ramp (s), one of them")
+        a = v["a_max"] if "a_max" in v else v["v_max"] / v["ramp"]
+        return profiles.trapezoid(v["distance"], v["v_max"], a, v.get("start", 0.0))
+    if kind == "s_curve":
+        return profiles.s_curve(v["distance"], v["v_max"], v["a_max"], v["j_max"],
+                                v.get("start", 0.0))
+    return profiles.speed_table(v["speed"][:, 0], v["speed"][:, 1])
+
+
+def _check_travel(model, r, d, duration):
+    """The prescribed travel stays in the slider's or hinge's range, and a drum neither
+    pays out more rope than it holds nor hauls the hook block into its sheaves."""
+    lo, hi = d.motion.extremes(duration)
+    e = f"{d.entry}.profile"
+    if d.target in ("slider", "hinge"):
+        j = model.joints[d.index]
+        u = "m" if d.target == "slider" else "deg"
+        f = 1.0 if d.target == "slider" else 180 / np.pi
+        if j.range is None:
+            if d.target == "slider":
+                r.fail(d.entry, f"the slider {j.name or j.entry} has no range: add range: "
+                       f"[min, max] (m along its axis from the model's position) to "
+                       f"{j.entry} in the model file, so the travel can be checked")
+            return
+        if lo < j.range[0] - 1e-12 or hi > j.range[1] + 1e-12:
+            r.fail(e, f"the drive moves {j.name or j.entry} over [{lo * f:.6g}, {hi * f:.6g}]"
+                   f" {u} within {duration:g} s, past the end of its range "
+                   f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u} ({model.file}, "
+                   f"{j.entry}.range); shorten the move or extend the range")
+        return
+    drum = model.drums[d.index]
+    payout = -lo * drum.radius
+    if payout > drum.rope_reserve:
+        r.fail(e, f"the drum pays out {payout:.6g} m of rope (radius {drum.radius:g} m x "
+               f"{-lo:.6g} rad), more than it holds (rope_reserve {drum.rope_reserve:g} m "
+               f"of drums.{drum.name}); haul in, shorten the move or add rope_reserve")
+    haul = hi * drum.radius
+    on_body = {i for b in model.bodies for i in b.nodes} | set(model.ground.tolist())
+    free = {int(i) for i in model.masses.nodes} - on_body
+    for rope in model.ropes:
+        if d.index not in rope.end_drums:
+            continue
+        xs = model.coords
+        hanging = [(a, b, f) for a, b, f in zip(rope.span_a, rope.span_b, rope.falls)
+                   if a in free or b in free]
+        room = sum(f * np.linalg.norm(xs[b] - xs[a]) for a, b, f in hanging)
+        if hanging and haul >= room:
+            r.fail(e, f"the drum hauls in {haul:.6g} m of rope (radius {drum.radius:g} m x "
+                   f"{hi:.6g} rad) but rope '{rope.name}' has only {room:.6g} m in the "
+                   "falls above its load: the hook block would be pulled into its "
+                   "sheaves; shorten the move")
