@@ -33,6 +33,8 @@ class Condensed:
     quasi_cyclic: tuple       # labels of the chosen quasi-cyclic coordinates
     massless: tuple           # labels of the statically condensed coordinates
     warnings: tuple = ()
+    inertial: np.ndarray = None   # (na,) coordinates with inertia (a), indices into q
+    positional: np.ndarray = None  # (np,) y1 = q_a[positional] (quasi-cyclic ones removed)
 
 
 def no_inertia(model):
@@ -150,4 +152,4 @@ def condense(system, method="schur"):
                             f"{np.sqrt(max(w2[k], 0.0)):.3g} rad/s")
     return Condensed(0.5 * (K1 + K1.T), 0.5 * (A1 + A1.T), recover, rigid,
                      tuple(labels[a[i]] for i in c), tuple(labels[i] for i in b),
-                     tuple(warnings))
+                     tuple(warnings), a, p)
