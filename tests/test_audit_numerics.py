@@ -105,3 +105,78 @@ effects: {structure: flexible}
     with pytest.raises(ModelError, match="its members cannot balance") as e:
         modes(load("bar.yaml", text))
     assert "ropes" not in str(e.value) and e.value.entry == "nodes.H"
+
+
+# --- zero rotary inertia: massless rotations condensed ----------------------------------
+
+G = 9.81
+
+PENDULUM = """cranefe: 1
+plane: xz
+nodes: {{P: [0, 0, 10], Q: [0, 0, 4]}}
+ground: [P]
+{masses}bodies:
+  link: {body}
+joints:
+  - {{type: hinge, bodies: [ground, link], at: P, axis: [0, 1, 0]}}
+"""
+
+
+@pytest.mark.parametrize("masses, body", [
+    ("masses: {Q: 300}\n", "{mass: 0, inertia: 0, nodes: [P, Q]}"),     # massless link
+    ("", "{mass: 300, com: Q, inertia: 0, nodes: [P, Q]}"),            # point-like body
+])
+def test_point_mass_on_a_rigid_link_is_a_pendulum(masses, body):
+    # w = sqrt(g / l), l = 6 m: the rotary inertia about the hinge is m l^2 exactly
+    r = modes(load("p.yaml", PENDULUM.format(masses=masses, body=body)))
+    np.testing.assert_allclose(r.omega, [np.sqrt(G / 6.0)], rtol=1e-12)
+
+
+TWO_ROPES = """cranefe: 1
+plane: xz
+nodes: {{S1: [-1, 0, 10], S2: [2, 0, 10], A: [-1, 0, 4], B: [2, 0, 4]}}
+ground: [S1, S2]
+{masses}bodies:
+  link: {body}
+ropes:
+  r1: {{EA: 1.0e6, path: [S1, A]}}
+  r2: {{EA: 2.0e6, path: [S2, B]}}
+effects: {{sway: false}}
+"""
+
+
+def test_massless_link_carrying_a_point_mass_off_its_centre():
+    # the link's massless motion is a rotation about B (where the mass is), a combination
+    # of its coordinates at the centre: condensed, the mass hangs on rope r2 alone,
+    # w^2 = k2 / m; the horizontal motion is free (sway off). Before: a spurious
+    # 5.8e8 Hz mode from the singular inertia.
+    r = modes(load("t.yaml", TWO_ROPES.format(masses="masses: {B: 300}\n",
+                                              body="{mass: 0, inertia: 0, nodes: [A, B]}")))
+    assert r.rigid.tolist() == [True, False] and len(r.massless) == 1
+    np.testing.assert_allclose(r.omega[1], np.sqrt(2.0e6 / 6.0 / 300), rtol=1e-12)
+
+
+def test_body_without_rotary_inertia_between_two_ropes():
+    # a body of mass m at the middle of A-B with inertia 0: its rotation is massless and
+    # adjusts statically, so the ropes act as 4 k1 k2 / (k1 + k2) on its vertical motion
+    text = TWO_ROPES.format(masses="", body="{mass: 300, com: [0.5, 0, 4], inertia: 0, "
+                            "nodes: [A, B]}")
+    r = modes(load("t.yaml", text))
+    k1, k2 = 1.0e6 / 6, 2.0e6 / 6
+    np.testing.assert_allclose(r.omega[~r.rigid], [np.sqrt(4 * k1 * k2 / (k1 + k2) / 300)],
+                               rtol=1e-12)
+
+
+def test_unrestrained_massless_rotation_is_a_model_error():
+    # one rope at the centre of mass: nothing resists the rotation, nothing has inertia
+    text = """cranefe: 1
+plane: xz
+nodes: {S: [0, 0, 10], A: [0, 0, 4], B: [2, 0, 4]}
+ground: [S]
+bodies:
+  beam: {mass: 300, com: A, inertia: 0, nodes: [A, B]}
+ropes:
+  r: {EA: 1.0e6, path: [S, A]}
+"""
+    with pytest.raises(ModelError, match="massless and unrestrained"):
+        modes(load("u.yaml", text))

@@ -126,7 +126,7 @@ def _massless_condensed(F, a, b):
     return out[len(b):]
 
 
-def graded_eigen(factor, massless, kept_in_a, a, A1):
+def graded_eigen(factor, massless, kept_in_a, a, A1, E=None):
     """Eigenpairs (lam, Y) of the condensed pair (K1, A1) from the element factor, or
     None with the reason when it cannot be used.
 
@@ -143,6 +143,8 @@ def graded_eigen(factor, massless, kept_in_a, a, A1):
             factor.indefinite) + ", e.g. a compressed member or a body above its hinge): "
             "graded factor not used, assembled K factorised instead")
     F = factor.F.toarray()
+    if E is not None:                  # massless motions as coordinates (condense.py)
+        F = F @ E
     F = F[np.any(F != 0, axis=1)]
     F1 = _massless_condensed(F, a, massless)[:, kept_in_a]
     n = F1.shape[1]

@@ -158,7 +158,7 @@ def _eigh_accurate(c, factor):
     if not (ratio.min() > 0 and max(ratio.max() / ratio.min(), factor.spread()) > GRADED):
         return sla.eigh(K, M), ""
     pairs, how = graded_eigen(factor, np.setdiff1d(np.arange(len(c.recover)), c.inertial),
-                              c.positional, c.inertial, M)
+                              c.positional, c.inertial, M, c.massless_map)
     if pairs is not None:
         return pairs, how
     try:
