@@ -7,6 +7,7 @@ positive definite even with quasi-cyclic (zero-frequency) motions; massless coor
 are condensed implicitly inside the factorised operator, never formed.
 """
 
+import logging
 import time
 from dataclasses import dataclass, field
 
@@ -19,6 +20,7 @@ from ..condense import DENSE_MAX, condense, massless_split, no_inertia
 from ..errors import AnalysisError, ModelError
 from .graded import element_energy, element_factor, graded_eigen
 
+log = logging.getLogger(__name__)
 SMALL = 300        # below this many coordinates the dense solution is the fastest
 
 
@@ -161,6 +163,7 @@ def _eigh_accurate(c, factor):
                               c.positional, c.inertial, M, c.massless_map)
     if pairs is not None:
         return pairs, how
+    log.info("graded problem: %s", how)
     try:
         LK, LM = np.linalg.cholesky(K), np.linalg.cholesky(M)
     except np.linalg.LinAlgError:
