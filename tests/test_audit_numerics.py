@@ -180,3 +180,12 @@ ropes:
 """
     with pytest.raises(ModelError, match="massless and unrestrained"):
         modes(load("u.yaml", text))
+
+
+def test_inextensible_ropes_with_psi_are_named_not_missing():
+    # the hoist rope has psi 0.2 but is a constraint here: the warning says so rather
+    # than "no element has psi" (the audit's false warning)
+    m = load("models/two_mass_hoist.yaml")
+    d = damping(replace(m, effects=replace(m.effects, rope_elasticity=False)))
+    assert any("rope hoist_rope: psi > 0 but inextensible" in w for w in d.warnings)
+    assert not any("no element has" in w for w in d.warnings)
