@@ -198,10 +198,15 @@ def _force_scale(f_u, u, springs, element_force, beams, size):
     """(n_u,) size of the forces meeting at each primitive coordinate: its weight plus
     |every element force on it| (spring rows |r_e| |N_e|, beam end forces |K_e u_e|), so
     the equilibrium test is relative to what the node carries, not to its own weight
-    (a light member node under a 2e5 N load balances to ~1e-7 N of round-off)."""
-    scale = np.abs(f_u) + abs(springs.R).T @ np.abs(element_force)
+    (a light member node under a 2e5 N load balances to ~1e-7 N of round-off), and to
+    the size of the terms of K u, whose round-off that is."""
+    # |K_e| |u_e| rather than |K_e u_e|: the round-off of f - K u (a 1e17 N/m link
+    # stretched by 1e-13 m carries 1e4 N, computed as a difference of 1e16 N terms)
+    absR = abs(springs.R)
+    scale = np.abs(f_u) + absR.T @ np.maximum(np.abs(element_force),
+                                              np.abs(springs.c) * (absR @ np.abs(u)))
     if beams is not None and len(beams.mat):
-        end = np.abs(np.einsum("kij,kj->ki", beams.mat, u[beams.idx]))
+        end = np.einsum("kij,kj->ki", np.abs(beams.mat), np.abs(u[beams.idx]))
         np.add.at(scale, beams.idx, end)
     return scale
 

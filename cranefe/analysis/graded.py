@@ -126,6 +126,44 @@ def _massless_condensed(F, a, b):
     return out[len(b):]
 
 
+def _psd_rows(K):
+    """Rows F (r, k) with K = F^T F of a symmetric (k, k) matrix, or None if K has a
+    negative eigenvalue beyond NULL_BLOCK (Jacobi-scaled, as `_block_rows`)."""
+    d = np.abs(np.diag(K))
+    s = np.where(d > 0, np.sqrt(np.where(d > 0, d, 1.0)), 1.0)
+    w, v = np.linalg.eigh(K / np.outer(s, s))
+    top = max(np.abs(w).max(initial=0.0), 1e-300)
+    if w.min(initial=0.0) < -NULL_BLOCK * top:
+        return None
+    keep = w > NULL_BLOCK * top
+    return np.sqrt(w[keep])[:, None] * (s[:, None] * v[:, keep]).T
+
+
+def _merge_negative(F, sign, grow=3):
+    """F (rows, n) with its negative rows merged into positive ones, or None.
+
+    The negative rows (a body's load stiffness on its rotations, a compressed beam) are
+    summed with the positive rows that share coordinates with them, K_loc = sum s_e
+    F_e^T F_e over that local set, grown by one ring of rows at a time until K_loc is
+    positive semi-definite; K_loc is then factorised on its own (`_psd_rows`). Only the
+    rows of the set are added together, so the contrasts between elements elsewhere
+    stay in separate rows. None when the set would grow to all rows (that is assembling
+    K) or stays indefinite."""
+    rows = sign < 0
+    for _ in range(grow):
+        rows = rows | np.any(F[:, np.any(F[rows] != 0, axis=0)] != 0, axis=1)
+        if rows.all():
+            return None
+        cols = np.flatnonzero(np.any(F[rows] != 0, axis=0))
+        local = F[np.ix_(rows, cols)]
+        new = _psd_rows(local.T @ (local * sign[rows, None]))
+        if new is not None:
+            merged = np.zeros((len(new), F.shape[1]))
+            merged[:, cols] = new
+            return np.vstack([F[~rows], merged])
+    return None
+
+
 def graded_eigen(factor, massless, kept_in_a, a, A1, E=None):
     """Eigenpairs (lam, Y) of the condensed pair (K1, A1) from the element factor, or
     None with the reason when it cannot be used.
@@ -138,11 +176,17 @@ def graded_eigen(factor, massless, kept_in_a, a, A1, E=None):
     gives each singular value to a relative error of order eps times the condition of
     G with its rows scaled, whatever the row scaling (Drmac and Veselic 2008, sec. 2).
     """
-    if factor.indefinite:
-        return None, ("the element factor has negative parts (" + ", ".join(
-            factor.indefinite) + ", e.g. a compressed member or a body above its hinge): "
-            "graded factor not used, assembled K factorised instead")
     F = factor.F.toarray()
+    how = "element factor, Jacobi SVD"
+    if factor.indefinite:
+        F = _merge_negative(F, factor.sign)
+        if F is None:
+            return None, ("the element factor has negative parts (" + ", ".join(
+                factor.indefinite) + ", e.g. a compressed member or a body above its "
+                "hinge) that the elements around them do not outweigh: graded factor not "
+                "used, assembled K factorised instead")
+        how = ("element factor (negative parts of " + ", ".join(factor.indefinite) +
+               " merged with the elements sharing their coordinates), Jacobi SVD")
     if E is not None:                  # massless motions as coordinates (condense.py)
         F = F @ E
     F = F[np.any(F != 0, axis=1)]
@@ -163,4 +207,4 @@ def graded_eigen(factor, massless, kept_in_a, a, A1, E=None):
     lam = (sva * (work[0] / work[1])) ** 2
     order = np.argsort(lam)
     Y = sla.solve_triangular(L, V[:, order], lower=True, trans="T")
-    return (lam[order], Y), "element factor, Jacobi SVD"
+    return (lam[order], Y), how
