@@ -147,8 +147,9 @@ def _eigh_accurate(c, factor):
     (a rope of nearly zero mass on a 5 t hook lost 1e-2 of the hoist frequency). A graded
     problem is solved from the element factor (`graded.graded_eigen`: singular values of
     F1 L_A^-T by the preconditioned one-sided Jacobi SVD, never forming K) with high
-    relative accuracy for every mode. When the factor has negative parts (compression,
-    a body above its hinge), the Cholesky factor of the assembled K1 is used instead,
+    relative accuracy for every mode (negative parts, from compression or a body above
+    its hinge, merged with the rows around them). When they cannot be merged locally, the
+    Cholesky factor of the assembled K1 is used instead,
     B = L_A^-1 L_K (Jacobi SVD again; accurate only as far as K1 is). Otherwise, or when
     K1 is not positive definite (an unstable equilibrium, reported by the caller), eigh.
     """
