@@ -16,6 +16,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from .assembly import null_space
+from .assembly.pattern import NULL_TOL
 from .coordinates import entry_of
 from .errors import ModelError
 
@@ -33,6 +34,9 @@ class Condensed:
     quasi_cyclic: tuple       # labels of the chosen quasi-cyclic coordinates
     massless: tuple           # labels of the statically condensed coordinates
     warnings: tuple = ()
+    inertial: np.ndarray = None   # (na,) coordinates with inertia (a), indices into q
+    positional: np.ndarray = None  # (np,) y1 = q_a[positional] (quasi-cyclic ones removed)
+    massless_map: np.ndarray = None  # (n, n) E of `massless_motions`, None if identity
 
 
 def no_inertia(model):
@@ -44,6 +48,33 @@ def massless_split(M):
     """Indices (a, b) of coordinates with and without inertia (exact zero diagonal)."""
     d = M.diagonal()
     return np.flatnonzero(d > 0), np.flatnonzero(d <= 0)
+
+
+def massless_motions(M, kinds):
+    """(a, b, E): coordinates with inertia, massless ones, and E (n, n) or None.
+
+    The massless motions are the null space of M. Usually they are coordinates (a zero
+    diagonal: a massless node, a body rotation with zero inertia about its centre of
+    mass) and E is None. A massless body carrying a point mass off its centre has a
+    massless rotation about that point instead, a combination of coordinates: then
+    q = E [q_a; s] with E[:, b] = Z Z_b^-1 (Z the null space, b coordinates chosen as
+    for quasi-cyclic motions), so that E^T M E has zero rows and columns b and s is
+    condensed statically like a massless node (docs/theory.md section 6).
+    """
+    a, b = massless_split(M)
+    if not len(a):
+        return a, b, None
+    Ma = M[np.ix_(a, a)]
+    try:               # positive definite: every Cholesky pivot a fair part of M_ii
+        if np.min(np.diag(np.linalg.cholesky(Ma)) ** 2 / np.diag(Ma)) > NULL_TOL:
+            return a, b, None
+    except np.linalg.LinAlgError:
+        pass
+    Z = null_space(M)
+    b = choose_quasi_cyclic(Z, kinds)
+    E = np.eye(len(M))
+    E[:, b] = Z @ np.linalg.inv(Z[b])
+    return np.setdiff1d(np.arange(len(M)), b), b, E
 
 
 def check_mechanisms(N, M, labels, model):
@@ -100,9 +131,14 @@ def condense(system, method="schur"):
     n = len(K)
     N = null_space(system.K_pattern.toarray())
     check_mechanisms(N, M, labels, system.model)
-    a, b = massless_split(M)
+    K0, M0, N0 = K, M, N
+    a, b, E = massless_motions(M, kinds)
     if not len(a):
         raise no_inertia(system.model)
+    if E is not None:                # massless motions as coordinates s: q = E [q_a; s]
+        K, M, N = E.T @ K @ E, E.T @ M @ E, np.linalg.solve(E, N)
+        M[b, :] = 0.0
+        M[:, b] = 0.0
 
     # massless: q_b = -K_bb^-1 K_ba q_a
     rec_b = -np.linalg.solve(K[np.ix_(b, b)], K[np.ix_(b, a)]) if len(b) else \
@@ -129,8 +165,11 @@ def condense(system, method="schur"):
     recover = np.zeros((n, len(p)))
     recover[a] = rec_a
     recover[b] = rec_b @ rec_a
+    if E is not None:
+        recover = E @ recover
     K1 = Ks[np.ix_(p, p)]
 
+    K, M, N = K0, M0, N0
     rigid, warnings = N, []
     if N.shape[1]:
         L = np.linalg.cholesky(N.T @ M @ N)
@@ -150,4 +189,4 @@ def condense(system, method="schur"):
                             f"{np.sqrt(max(w2[k], 0.0)):.3g} rad/s")
     return Condensed(0.5 * (K1 + K1.T), 0.5 * (A1 + A1.T), recover, rigid,
                      tuple(labels[a[i]] for i in c), tuple(labels[i] for i in b),
-                     tuple(warnings))
+                     tuple(warnings), a, p, E)

@@ -148,10 +148,9 @@ def solve_static(model, effects=None, reuse=None):
                 drive_force[i] = -lc[0]            # pushes C away from A: compression
                 node_force[cc] += lc[0] * e[0]
                 node_force[a] -= lc[0] * e[0]
-    # size of the forces meeting at each node, for a relative equilibrium test
-    scale = np.abs(f_u[tr]) + abs(springs.R[:, tr]).T @ np.abs(element_force)
+    scale = _force_scale(f_u, u, springs, element_force, beams, layout.size)[tr]
     _check_free_nodes(model, dofs, node_force, f_u[tr].reshape(nn, 3),
-                      scale.reshape(nn, 3))
+                      scale.reshape(nn, 3), _kinds_at(springs, beams, layout))
     return StaticState(model, u, element_force, springs, dofs.ropes, drive_force,
                        node_force, tuple(joint_forces), tuple(gravity_points), beam_force, mm)
 
@@ -195,17 +194,54 @@ def _solve(K, f, P, dofs, model, reuse=None):
     return sla.solve(Kd, f, assume_a="sym")
 
 
-def _check_free_nodes(model, dofs, node_force, weight_force, scale):
+def _force_scale(f_u, u, springs, element_force, beams, size):
+    """(n_u,) size of the forces meeting at each primitive coordinate: its weight plus
+    |every element force on it| (spring rows |r_e| |N_e|, beam end forces |K_e u_e|), so
+    the equilibrium test is relative to what the node carries, not to its own weight
+    (a light member node under a 2e5 N load balances to ~1e-7 N of round-off), and to
+    the size of the terms of K u, whose round-off that is."""
+    # |K_e| |u_e| rather than |K_e u_e|: the round-off of f - K u (a 1e17 N/m link
+    # stretched by 1e-13 m carries 1e4 N, computed as a difference of 1e16 N terms)
+    absR = abs(springs.R)
+    scale = np.abs(f_u) + absR.T @ np.maximum(np.abs(element_force),
+                                              np.abs(springs.c) * (absR @ np.abs(u)))
+    if beams is not None and len(beams.mat):
+        end = np.einsum("kij,kj->ki", np.abs(beams.mat), np.abs(u[beams.idx]))
+        np.add.at(scale, beams.idx, end)
+    return scale
+
+
+def _kinds_at(springs, beams, layout):
+    """(nn,) the kinds of element attached to each node, e.g. 'ropes and members'."""
+    nn = layout.n_nodes
+    touched = {k: np.zeros(nn, bool) for k in ("ropes", "springs", "members")}
+    R = springs.R.tocoo()
+    node_of = np.full(layout.size, -1)
+    node_of[layout.translations()] = np.repeat(np.arange(nn), 3)
+    for kind, rows in (("ropes", springs.rope >= 0), ("springs", springs.spring >= 0),
+                       ("members", springs.member >= 0)):
+        hit = node_of[R.col[rows[R.row] & (node_of[R.col] >= 0)]]
+        touched[kind][hit] = True
+    if beams is not None and len(beams.mat):
+        hit = node_of[beams.idx.ravel()]
+        touched["members"][hit[hit >= 0]] = True
+    names = [[k for k, t in touched.items() if t[i]] for i in range(nn)]
+    return [" and ".join(x) if x else "elements" for x in names]
+
+
+def _check_free_nodes(model, dofs, node_force, weight_force, scale, kinds):
     """Free model nodes must be in equilibrium in every direction, not only along their
-    ropes (interior rope nodes are exempt: see solve_static)."""
+    ropes (interior rope nodes are exempt: see solve_static). The test is relative to
+    the forces meeting at the node (`_force_scale`)."""
     nn = len(model.node_names)
     for i in np.flatnonzero(dofs.carrier[:nn] == -2):
         F = node_force[i]
         weight = np.linalg.norm(weight_force[i])
         if weight > 0 and np.linalg.norm(F) > 1e-7 * np.linalg.norm(scale[i]):
+            hint = "so that its ropes hang along gravity " if "ropes" in kinds[i] else ""
             raise ModelError(
                 f"node '{model.node_names[i]}' is not in static equilibrium in the reference "
-                f"geometry: its ropes and springs cannot balance a force of "
-                f"{np.array2string(F, precision=4)} N (its weight is {weight:.4g} N); move it "
-                "so that its ropes hang along gravity (the reference geometry is the "
-                "static equilibrium)", model.file, f"nodes.{model.node_names[i]}")
+                f"geometry: its {kinds[i]} cannot balance a force of "
+                f"{np.array2string(F, precision=4)} N (its weight is {weight:.4g} N); move "
+                f"it {hint}(the reference geometry is the static equilibrium)", model.file,
+                f"nodes.{model.node_names[i]}")

@@ -7,6 +7,7 @@ positive definite even with quasi-cyclic (zero-frequency) motions; massless coor
 are condensed implicitly inside the factorised operator, never formed.
 """
 
+import logging
 import time
 from dataclasses import dataclass, field
 
@@ -16,10 +17,12 @@ import scipy.sparse.linalg as spla
 
 from ..system import assemble
 from ..condense import DENSE_MAX, condense, massless_split, no_inertia
-from ..errors import AnalysisError
+from ..errors import AnalysisError, ModelError
 from ..model import plausibility
+from .graded import element_energy, element_factor, graded_eigen
 from .jsonable import num, timings
 
+log = logging.getLogger(__name__)
 SMALL = 300        # below this many coordinates the dense solution is the fastest
 
 
@@ -42,6 +45,7 @@ class ModalResult:
     status: int = 0
     message: str = "ok"
     drive_reduction: dict = None   # with drive: reduced, the comparison of `drive_reduction`
+    graded: str = ""          # how a graded problem was solved (and why not), else ""
 
     @property
     def frequency_hz(self):
@@ -81,7 +85,10 @@ class ModalResult:
 
 
 def modes(model, effects=None, count=None, solver="auto", system=None):
-    """Natural modes of `model`. count=None: all (dense) or 10 (sparse)."""
+    """Natural modes of `model`. count=None: all (dense) or 10 (sparse); else >= 1."""
+    if count is not None and (isinstance(count, bool) or int(count) != count or count < 1):
+        raise ModelError(f"count {count}: ask for at least one mode (a whole number >= 1)",
+                         getattr(model, "file", None), "count")
     t0 = time.perf_counter()
     system = system or assemble(model, effects)
     n = system.K.shape[0]
@@ -100,10 +107,11 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
                         "model: solved densely")
         solver = "dense"
     if solver == "dense":
-        omega, shapes, rigid, qc, ml, dense_warnings = _dense(system, count)
+        omega, shapes, rigid, qc, ml, dense_warnings, graded = _dense(system, count)
         warnings += dense_warnings
     else:
         omega, shapes, rigid, qc, ml = _sparse(system, count or 10)
+        graded = ""
     t2 = time.perf_counter()
     # sign convention: the largest component of each shape is positive
     big = np.argmax(np.abs(shapes), axis=0)
@@ -114,7 +122,7 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
         model.name, system.effects.as_dict(), system.dofs.labels, omega, shapes,
         nodes.reshape(len(omega), -1, 3), rigid, qc, ml, solver,
         {**system.timings, "solve": t2 - t1, "total": time.perf_counter() - t0},
-        list(warnings))
+        list(warnings), graded=graded)
     if system.static is not None:
         slack = [f"rope {r.name} has no tension ({S:.3g} N) somewhere in the static state"
                  for r, (S, _) in zip(model.ropes, system.static.rope_tension()) if S <= 0]
@@ -126,49 +134,76 @@ def modes(model, effects=None, count=None, solver="auto", system=None):
 
 def _dense(system, count):
     c = condense(system)
-    lam, Y = _eigh_accurate(c.K, c.M)
+    factor = element_factor(system)
+    (lam, Y), graded = _eigh_accurate(c, factor)
     _check_stable(lam, c.quasi_cyclic)
     lam = np.maximum(lam, 0.0)
     shapes = np.hstack([c.rigid, c.recover @ Y])
     omega = np.concatenate([np.zeros(c.rigid.shape[1]), np.sqrt(lam)])
     rigid = np.arange(len(omega)) < c.rigid.shape[1]
+    rigid, qc = _zero_to_roundoff(factor, shapes, rigid, c.quasi_cyclic,
+                                  system.dofs.labels)
+    omega = np.where(rigid, 0.0, omega)
     if count is not None:
         omega, shapes, rigid = omega[:count], shapes[:, :count], rigid[:count]
-    return omega, shapes, rigid, c.quasi_cyclic, c.massless, c.warnings
+    return omega, shapes, rigid, qc, c.massless, c.warnings, graded
 
 
-GRADED = 1e6      # spread of Rayleigh quotients K_ii/M_ii above which Jacobi SVD is used
+def _zero_to_roundoff(factor, shapes, rigid, qc, labels):
+    """Rigid modes: those of the null space, and any whose w^2 is zero to round-off of
+    its element terms (`graded.element_energy`): a mechanism whose positive and negative
+    tension stiffnesses cancel gives w^2 ~ -1e-30, not 0. They have the smallest w^2, so
+    rigid modes still come first. -> (rigid, labels of rigid modes)"""
+    _, zero = element_energy(factor, shapes)
+    extra = ~rigid & zero
+    qc = tuple(qc) + tuple(labels[int(np.argmax(np.abs(shapes[:, i])))]
+                           for i in np.flatnonzero(extra))
+    return rigid | extra, qc
 
 
-def _eigh_accurate(K, M):
-    """All eigenpairs of K y = lam M y (M-normalised), accurate where it matters.
+GRADED = 1e6      # spread of Rayleigh quotients K_ii/M_ii, or of the element stiffnesses
+                  # (squared row norms of the factor), above which the Jacobi SVD is used
 
-    LAPACK's eigh works on M^-1/2 K M^-1/2 with absolute errors eps |lam_max|, so with
+
+def _eigh_accurate(c, factor):
+    """All eigenpairs of K1 y = lam A1 y (A1-normalised), accurate where it matters,
+    and how they were found.
+
+    LAPACK's eigh works on A1^-1/2 K1 A1^-1/2 with absolute errors eps |lam_max|, so with
     stiffness or mass contrasts (a graded problem) the low modes lose relative accuracy
-    (a rope of nearly zero mass on a 5 t hook lost 1e-2 of the hoist frequency). For a
-    graded problem the eigenvalues are the squared singular values of
-    B = L_M^-1 L_K (Cholesky factors), which the preconditioned one-sided Jacobi SVD
-    (LAPACK dgejsv; Drmac and Veselic 2008) computes with high relative accuracy, every
-    mode alike; y = L_M^-T U. Otherwise, or when K is not positive definite (an unstable
-    equilibrium, reported by the caller), plain eigh.
+    (a rope of nearly zero mass on a 5 t hook lost 1e-2 of the hoist frequency). A graded
+    problem is solved from the element factor (`graded.graded_eigen`: singular values of
+    F1 L_A^-T by the preconditioned one-sided Jacobi SVD, never forming K) with high
+    relative accuracy for every mode (negative parts, from compression or a body above
+    its hinge, merged with the rows around them). When they cannot be merged locally, the
+    Cholesky factor of the assembled K1 is used instead,
+    B = L_A^-1 L_K (Jacobi SVD again; accurate only as far as K1 is). Otherwise, or when
+    K1 is not positive definite (an unstable equilibrium, reported by the caller), eigh.
     """
+    K, M = c.K, c.M
     n = K.shape[0]
     if not n:
-        return np.zeros(0), np.zeros((0, 0))
+        return (np.zeros(0), np.zeros((0, 0))), ""
     ratio = np.diag(K) / np.diag(M)
-    if ratio.min() > 0 and ratio.max() / ratio.min() > GRADED:
-        try:
-            LK, LM = np.linalg.cholesky(K), np.linalg.cholesky(M)
-        except np.linalg.LinAlgError:
-            return sla.eigh(K, M)
-        from scipy.linalg.lapack import dgejsv
-        B = sla.solve_triangular(LM, LK, lower=True)
-        sva, U, _, work, _, info = dgejsv(B, jobv=3)
-        if info == 0:
-            lam = (sva * work[0] / work[1]) ** 2
-            order = np.argsort(lam)
-            return lam[order], sla.solve_triangular(LM, U[:, order], lower=True, trans="T")
-    return sla.eigh(K, M)
+    if not (ratio.min() > 0 and max(ratio.max() / ratio.min(), factor.spread()) > GRADED):
+        return sla.eigh(K, M), ""
+    pairs, how = graded_eigen(factor, np.setdiff1d(np.arange(len(c.recover)), c.inertial),
+                              c.positional, c.inertial, M, c.massless_map)
+    if pairs is not None:
+        return pairs, how
+    log.info("graded problem: %s", how)
+    try:
+        LK, LM = np.linalg.cholesky(K), np.linalg.cholesky(M)
+    except np.linalg.LinAlgError:
+        return sla.eigh(K, M), how + "; K1 not positive definite: eigh"
+    from scipy.linalg.lapack import dgejsv
+    B = sla.solve_triangular(LM, LK, lower=True)
+    sva, U, _, work, _, info = dgejsv(B, jobv=3)
+    if info == 0:
+        lam = (sva * work[0] / work[1]) ** 2
+        order = np.argsort(lam)
+        return (lam[order], sla.solve_triangular(LM, U[:, order], lower=True, trans="T")), how
+    return sla.eigh(K, M), how + "; Jacobi SVD failed: eigh"
 
 
 def _check_stable(lam, qc):
@@ -215,13 +250,13 @@ def _sparse(system, k):
     lam, Xa = spla.eigsh(A, k=k, M=Ma, sigma=sigma, OPinv=OP, which="LM", v0=v0)
     order = np.argsort(lam)
     lam, Xa = lam[order], Xa[:, order]
-    rigid = lam < 1e-10 * ratio          # zero to round-off of K - sigma M
-
-    _check_stable(np.where(rigid, 0, lam), ())
     X = np.zeros((n, k))
     X[a] = Xa
     if len(b):
         X[b] = -Kbb.solve(Kab.T @ Xa)
+    # zero to round-off of K - sigma M, or of the element stiffness the mode meets
+    rigid = (lam < 1e-10 * ratio) | element_energy(element_factor(system), X)[1]
+    _check_stable(np.where(rigid, 0, lam), ())
     lab = system.dofs.labels
     qc = tuple(lab[a[np.argmax(np.abs(Xa[:, i]))]] for i in np.flatnonzero(rigid))
     return np.sqrt(np.maximum(lam, 0)) * ~rigid, X, rigid, qc, \

@@ -432,7 +432,7 @@ def _bodies(c):
                 r.fail(f"{e}.com", "is off the x-z plane of a plane: xz model")
         else:
             com = None
-        inertia = _inertia(b["inertia"], f"{e}.inertia", planar, r, allow_zero=False) \
+        inertia = _inertia(b["inertia"], f"{e}.inertia", planar, r, allow_zero=True) \
             if "inertia" in b else np.zeros((3, 3))
         bnodes = []
         for k, n in enumerate(r.listing(b.get("nodes", []) or [], f"{e}.nodes")):
@@ -709,7 +709,8 @@ def _inertia(v, entry, planar, r, allow_zero):
     if planar:
         eig = np.array([inertia[1, 1]])
     if eig.min() < 0 or (not allow_zero and eig.min() <= 0):
-        r.fail(entry, f"must be positive definite (principal values {np.round(eig, 6)})")
+        r.fail(entry, ("must have no negative principal value" if allow_zero else
+                       "must be positive definite") + f" (principal values {np.round(eig, 6)})")
     return inertia
 
 

@@ -86,7 +86,13 @@ def damping(model, method="auto", count=None, system=None, modal=None):
 
     psi_any = np.any(system.springs.psi * system.springs.c > 0) or (
         system.beams is not None and np.any(system.beam_psi > 0))
-    if not psi_any:
+    stiff_less = sorted(set(n for n, p, c in zip(system.springs.names, system.springs.psi,
+                                                 system.springs.c) if p > 0 and c == 0))
+    if not psi_any and stiff_less:
+        result.warnings.append(f"{', '.join(stiff_less)}: psi > 0 but inextensible here "
+                               "(rope_elasticity: false), so no element that deforms "
+                               "absorbs energy: every damping ratio is zero")
+    elif not psi_any:
         result.warnings.append("no element has an absorption coefficient psi > 0: every "
                                "damping ratio is zero (give psi on ropes, springs or "
                                "members)")
