@@ -1,0 +1,14 @@
+"""Sway-free motion (issue 17): input shapers (`shapers`), shaped motion profiles and
+their residual sway in closed form (`motion`), and the minimum-time swing-free trolley
+move (`swingfree`). Linear theory throughout; docs/loads.md "Input shaping" derives it.
+"""
+
+from .motion import (AccelSteps, double_pendulum_omegas, nonlinear_residual_sway,
+                     pendulum_omega, residual_amplitude, residual_sway, shape, trapezoid)
+from .shapers import SHAPERS, Shaper, convolve, ei, make, unshaped, zv, zvd, zvdd
+from .swingfree import min_time_swing_free
+
+__all__ = ["AccelSteps", "SHAPERS", "Shaper", "convolve", "double_pendulum_omegas", "ei",
+           "make", "min_time_swing_free", "nonlinear_residual_sway", "pendulum_omega",
+           "residual_amplitude", "residual_sway", "shape", "trapezoid", "unshaped", "zv",
+           "zvd", "zvdd"]
