@@ -3,8 +3,9 @@ the error in the assumed frequency or rope length), the move time each costs, th
 nonlinear residual beside the linear one, the minimum-time swing-free trapezoid, and a
 two-mode shaper on the hook-and-load double pendulum (docs/loads.md).
 
-Writes results/shaping_robustness.csv/.png (V(w/w_model) and the residual sway of the
-move against the rope-length error) and results/shaping_cost.csv (one row per shaper:
+Writes results/shaping_robustness.csv/.png (V(w/w_model); the plot also shows the
+residual sway of the move against the rope-length error, shaping_length_error.csv) and
+results/shaping_cost.csv (one row per shaper:
 move time, residual sway exact and with +/-10 % / +/-20 % rope-length error, width of the
 5 % insensitivity band) and results/shaping_double_pendulum.csv.
 """
@@ -38,22 +39,27 @@ def _band(shaper, omega, level=0.05):
 
 
 def robustness(quick=False):
-    """Rows of V(w / w_model) per shaper and of the move's residual sway [deg] against
-    the rope-length error (the true rope l_true = l (1 + e): w_true = w sqrt(1/(1+e)))."""
-    from ..analysis.shaping import pendulum_omega, residual_sway, shape, trapezoid
+    """Rows of V(w / w_model) per shaper, w / w_model from 0.5 to 1.5 (undamped)."""
+    from ..analysis.shaping import pendulum_omega
     w = pendulum_omega(LENGTH)
     shapers = _shapers(w)
+    return [{"frequency_ratio": float(r),
+             **{f"V_{n}": float(s.residual(r * w)) for n, s in shapers.items()}}
+            for r in np.linspace(0.5, 1.5, 41 if quick else 401)]
+
+
+def length_error(quick=False):
+    """Rows of the move's residual sway [deg] per shaper (and for the swing-free
+    trapezoid) when the true rope is l (1 + e) but the shapers assume l."""
+    from ..analysis.shaping import (min_time_swing_free, pendulum_omega, residual_sway,
+                                    shape, trapezoid)
     move = trapezoid(DISTANCE, V_MAX, A_MAX)
-    rows = []
-    for e in np.linspace(-0.5, 0.5, 21 if quick else 201):
-        ratio = 1.0 / np.sqrt(1.0 + e)
-        row = {"length_error": float(e), "frequency_ratio": float(ratio)}
-        for n, s in shapers.items():
-            row[f"V_{n}"] = float(s.residual(ratio * w))
-            row[f"sway_deg_{n}"] = float(np.degrees(residual_sway(shape(move, s),
-                                                                  LENGTH * (1 + e))))
-        rows.append(row)
-    return rows
+    profiles = {n: shape(move, s) for n, s in _shapers(pendulum_omega(LENGTH)).items()}
+    profiles["swing-free"] = min_time_swing_free(DISTANCE, V_MAX, A_MAX, LENGTH)["profile"]
+    return [{"length_error": float(e),
+             **{f"sway_deg_{n}": float(np.degrees(residual_sway(p, LENGTH * (1 + e))))
+                for n, p in profiles.items()}}
+            for e in np.linspace(-0.5, 0.5, 21 if quick else 201)]
 
 
 def cost():
@@ -110,17 +116,19 @@ def double_pendulum():
 
 
 def run(outdir, quick=False):
-    rob = robustness(quick)
-    rows, free = cost()
+    rob, err = robustness(quick), length_error(quick)
+    rows, _ = cost()
     paths = [write_csv(outdir, "shaping_robustness.csv", rob),
+             write_csv(outdir, "shaping_length_error.csv", err),
              write_csv(outdir, "shaping_cost.csv", rows),
              write_csv(outdir, "shaping_double_pendulum.csv", double_pendulum())]
     plt = pyplot()
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4))
     for n in NAMES:
         a1.plot([r["frequency_ratio"] for r in rob], [r[f"V_{n}"] for r in rob], label=n)
-        a2.plot([100 * r["length_error"] for r in rob], [r[f"sway_deg_{n}"] for r in rob],
-                label=n)
+    for n in NAMES + ("swing-free",):
+        a2.plot([100 * r["length_error"] for r in err], [r[f"sway_deg_{n}"] for r in err],
+                label=n, ls="--" if n == "swing-free" else "-")
     a1.axhline(EI_V, color="grey", lw=0.6, ls=":")
     a1.set(xlabel="actual / assumed frequency", ylabel="residual vibration V",
            title="shaper robustness (undamped)")
