@@ -19,13 +19,16 @@ W = np.sqrt(G / L)
 TOL = dict(method="DOP853", rtol=1e-10, atol=1e-13)
 
 
-def _integrate_linear(profile, omega, zeta, gain, extra=0.0):
-    """q'' + 2 zeta w q' + w^2 q = gain a(t) from rest, piecewise between the jumps."""
+def _integrate_linear(profile, omega, zeta, gain):
+    """q'' + 2 zeta w q' + w^2 q = gain a(t) from rest, piecewise between the steps."""
     y = np.zeros(2)
     edges = np.unique(np.concatenate([[0.0], profile.times]))
-    for t0, t1 in zip(edges[:-1], edges[1:]):
-        a = float(profile.acceleration(0.5 * (t0 + t1)))
-        rhs = lambda t, y: [y[1], gain * a - 2 * zeta * omega * y[1] - omega**2 * y[0]]
+    for t0, t1 in zip(edges[:-1], edges[1:]):       # a(t) = a0 + slope (t - tm) here
+        tm = 0.5 * (t0 + t1)
+        a0 = float(profile.acceleration(tm))
+        slope = float(np.sum(profile.jumps[profile.times <= t0])) if profile.order else 0.0
+        rhs = lambda t, y: [y[1], gain * (a0 + slope * (t - tm))
+                            - 2 * zeta * omega * y[1] - omega**2 * y[0]]
         y = solve_ivp(rhs, (t0, t1), y, **TOL).y[:, -1]
     wd = omega * np.sqrt(1 - zeta**2)
     return np.hypot(y[0], (y[1] + zeta * omega * y[0]) / wd)
@@ -175,3 +178,43 @@ def test_bad_input():
         sh.make("XYZ", 1.0)
     with pytest.raises(ModelError):
         sh.trapezoid(0.0, 1.0, 1.0)
+    with pytest.raises(ModelError, match="constant speed"):     # stops mid-acceleration
+        sh.residual_sway(sh.AccelSteps(np.array([0.0, 1.0]), np.array([1.0, -0.5])), L)
+    with pytest.raises(ModelError, match="constant speed"):
+        sh.residual_sway(sh.JerkSteps(np.array([0.0, 1.0]), np.array([1.0, -1.0])), L)
+
+
+def test_s_curve():
+    """The S-curve is the trapezoid filtered by a box of width t_j: same distance and top
+    speed, t_j longer, jerk a/t_j, residual x |sin(w t_j/2)|/(w t_j/2)."""
+    a, j = 0.5, 0.25
+    tj = a / j
+    p, tr = sh.s_curve(15.0, 1.0, a, j), sh.trapezoid(15.0, 1.0, a)
+    assert p.end == pytest.approx(tr.end + tj, rel=1e-15)
+    assert p.position(p.end) == pytest.approx(15.0, rel=1e-14)
+    t = np.linspace(0, p.end, 2001)
+    assert np.max(np.abs(p.acceleration(p.times))) == pytest.approx(a, rel=1e-14)
+    assert np.max(np.abs(np.diff(p.acceleration(t)) / np.diff(t))) <= j * (1 + 1e-9)
+    for w in (W, 2.3 * W):
+        sinc = abs(np.sin(w * tj / 2) / (w * tj / 2))
+        assert sh.residual_amplitude(p, w, 0.0, 1 / L) == pytest.approx(
+            sh.residual_amplitude(tr, w, 0.0, 1 / L) * sinc, rel=1e-12)
+    tab = p.table(per_piece=8)                # piecewise-quadratic speed: error j h^2/8
+    h = np.max(np.diff(tab["times"]))
+    err = np.max(np.abs(np.interp(t, tab["times"], tab["values"]) - p.speed(t)))
+    assert 0 < err <= j * h * h / 8 * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.1])
+def test_shaped_s_curve_zero_residual_and_ode(zeta):
+    p = sh.s_curve(6.0, 1.0, 0.8, 1.5)
+    ref = sh.residual_amplitude(p, W, zeta, 1 / L)
+    assert sh.residual_amplitude(sh.shape(p, sh.zvd(W, zeta)), W, zeta, 1 / L) < 1e-12 * ref
+    shaped = sh.shape(p, sh.ei(1.1 * W, zeta, 0.05))
+    assert isinstance(shaped, sh.JerkSteps)
+    for w in (W, 1.7 * W):
+        assert sh.residual_amplitude(shaped, w, zeta, 1 / L) == pytest.approx(
+            _integrate_linear(shaped, w, zeta, 1 / L), rel=1e-8)
+    small = sh.s_curve(0.06, 0.01, 0.008, 0.015)      # 100 x smaller: linear limit
+    assert sh.nonlinear_residual_sway(small, L) == pytest.approx(
+        sh.residual_sway(small, L), rel=1e-6)

@@ -2,7 +2,8 @@
 sway they leave on a pendulum or a damped oscillator, in closed form.
 
 A profile is a(t) = sum_j da_j H(t - t_j) (``AccelSteps``): a trapezoidal speed profile
-has four jumps. Shaping convolves the command with an impulse train (t_i, A_i): the
+has four jumps; an S-curve is j(t) = sum_j dj_j H(t - t_j) (``JerkSteps``), whose state
+is the superposition of ramp responses instead (`_responses`). Shaping convolves the command with an impulse train (t_i, A_i): the
 jumps become da_j A_i at t_j + t_i, still piecewise constant, so the shaped speed is
 piecewise linear and is given exactly by its values at the jump times (``table``).
 
@@ -18,6 +19,7 @@ i.e. w = sqrt(g/l), gain -1/l.
 """
 
 from dataclasses import dataclass
+from math import factorial
 
 import numpy as np
 
@@ -27,39 +29,58 @@ from ...errors import AnalysisError, ModelError
 
 @dataclass(frozen=True)
 class AccelSteps:
-    """a(t) = sum_j jumps[j] H(t - times[j]); times sorted."""
+    """a(t) = sum_j jumps[j] H(t - times[j]); times sorted (order 0: piecewise-constant
+    acceleration, a trapezoidal speed)."""
     times: np.ndarray
     jumps: np.ndarray
+    order = 0
 
     @property
     def end(self):
         return float(self.times[-1])
 
-    def acceleration(self, t):
+    def _power(self, t, k):
+        """sum_j jumps_j (t - t_j)_+^k / k!: the profile integrated k times."""
         t = np.asarray(t, float)[..., None]
-        return np.sum(self.jumps * (t >= self.times), axis=-1)
+        d = np.maximum(t - self.times, 0.0)
+        base = (t >= self.times) if k == 0 else d**k / factorial(k)
+        return np.sum(self.jumps * base, axis=-1)
+
+    def acceleration(self, t):
+        return self._power(t, self.order)
 
     def speed(self, t):
-        t = np.asarray(t, float)[..., None]
-        return np.sum(self.jumps * np.maximum(t - self.times, 0.0), axis=-1)
+        return self._power(t, self.order + 1)
 
     def position(self, t):
-        t = np.asarray(t, float)[..., None]
-        return np.sum(self.jumps * 0.5 * np.maximum(t - self.times, 0.0)**2, axis=-1)
+        return self._power(t, self.order + 2)
 
-    def table(self):
-        """The speed profile as a table the operation engine takes (linear between
-        rows, exact): ``{"times": [...], "values": [...]}`` plus positions."""
-        t = np.unique(np.concatenate([[0.0], self.times]))
+    def table(self, per_piece=1):
+        """The speed profile as a table for the operation engine: ``{"times", "values",
+        "positions"}`` at the corners (and ``per_piece - 1`` points inside each piece).
+        Exact under linear interpolation for order 0 (the speed is piecewise linear);
+        for order 1 (piecewise quadratic speed) the interpolation error is at most
+        j h^2 / 8, h the row spacing, j the largest jerk."""
+        corners = np.unique(np.concatenate([[0.0], self.times]))
+        f = np.linspace(0.0, 1.0, per_piece + 1)[:-1]
+        t = np.concatenate([(a + f * (b - a)) for a, b in zip(corners[:-1], corners[1:])]
+                           + [corners[-1:]])
         return {"times": t.tolist(), "values": self.speed(t).tolist(),
                 "positions": self.position(t).tolist()}
 
 
-def _merge(times, jumps):
+@dataclass(frozen=True)
+class JerkSteps(AccelSteps):
+    """j(t) = sum_j jumps[j] H(t - times[j]) (order 1: piecewise-linear acceleration, an
+    S-curve speed)."""
+    order = 1
+
+
+def _merge(times, jumps, cls=AccelSteps):
     order = np.argsort(times, kind="stable")
     t, d = times[order], jumps[order]
     keep = np.concatenate([[True], np.diff(t) > 1e-12 * max(abs(t[-1]), 1.0)])
-    return AccelSteps(t[keep], np.bincount(np.cumsum(keep) - 1, weights=d))
+    return cls(t[keep], np.bincount(np.cumsum(keep) - 1, weights=d))
 
 
 def trapezoid(distance, v_max, a_max):
@@ -80,23 +101,52 @@ def shape(profile, shaper):
     speed, longer by the shaper's duration)."""
     t = (profile.times[:, None] + shaper.times[None, :]).ravel()
     d = (profile.jumps[:, None] * shaper.amplitudes[None, :]).ravel()
-    return _merge(t, d)
+    return _merge(t, d, type(profile))
+
+
+def s_curve(distance, v_max, a_max, j_max):
+    """Jerk-limited (S-curve) move: the trapezoid convolved with a box of width
+    t_j = a_max / j_max and unit area (a moving average of the acceleration). The
+    acceleration ramps over t_j at jerk j_max; distance and top speed are the
+    trapezoid's, the move is t_j longer. In frequency terms the box multiplies every
+    residual by |sin(w t_j/2)| / (w t_j/2) (undamped): an S-curve is itself a filter."""
+    if not j_max > 0:
+        raise ModelError(f"an S-curve needs a positive jerk limit (got {j_max})")
+    trap = trapezoid(distance, v_max, a_max)
+    tj = a_max / j_max
+    t = np.concatenate([trap.times, trap.times + tj])
+    d = np.concatenate([trap.jumps, -trap.jumps]) / tj
+    return _merge(t, d, JerkSteps)
+
+
+def _responses(tau, w, zeta):
+    """Unit step response s, its derivative h and the unit ramp response rho of
+    q'' + 2 zeta w q' + w^2 q = f, at the delays tau >= 0 (rho' = s, s' = h):
+      rho = [t - 2 zeta/w + e^(-zeta w t)(2 zeta/w cos w_d t + (2 zeta^2 - 1)/w_d sin w_d t)]/w^2
+    """
+    wd = w * np.sqrt(1 - zeta**2)
+    e, c, sn = np.exp(-zeta * w * tau), np.cos(wd * tau), np.sin(wd * tau)
+    s = (1.0 - e * (c + zeta * w / wd * sn)) / w**2
+    h = e * sn / wd
+    rho = (tau - 2 * zeta / w + e * (2 * zeta / w * c + (2 * zeta**2 - 1) / wd * sn)) / w**2
+    return s, h, rho
 
 
 def residual_amplitude(profile, omega, zeta=0.0, gain=1.0):
     """Amplitude of the free vibration left by the profile on the mode (omega, zeta)
-    (module docstring), at the end of the motion."""
-    if abs(np.sum(profile.jumps)) > 1e-9 * np.max(np.abs(profile.jumps)):
-        raise ModelError("the motion does not end at constant speed (sum of "
-                         "acceleration jumps is not zero)")
+    (module docstring), at the end of the motion. For jerk steps (S-curves) the state
+    is the superposition of ramp responses: q = gain sum dj rho, q' = gain sum dj s."""
+    scale = np.max(np.abs(profile.jumps)) * max(profile.end, 1.0) ** (profile.order + 1)
+    after = profile.acceleration(profile.end + np.array([1.0, 2.0]))
+    if np.max(np.abs(after)) > 1e-9 * scale:
+        raise ModelError("the motion does not end at constant speed (its acceleration "
+                         "is not zero after the last step)")
     w = float(omega)
     wd = w * np.sqrt(1 - zeta**2)
-    tau = profile.end - profile.times
-    e = np.exp(-zeta * w * tau)
-    s = (1.0 - e * (np.cos(wd * tau) + zeta * w / wd * np.sin(wd * tau))) / w**2
-    h = e * np.sin(wd * tau) / wd
-    q = gain * np.sum(profile.jumps * s)
-    dq = gain * np.sum(profile.jumps * h)
+    s, h, rho = _responses(profile.end - profile.times, w, zeta)
+    q, dq = (s, h) if profile.order == 0 else (rho, s)
+    q = gain * np.sum(profile.jumps * q)
+    dq = gain * np.sum(profile.jumps * dq)
     return float(np.hypot(q, (dq + zeta * w * q) / wd))
 
 
@@ -131,9 +181,14 @@ def nonlinear_residual_sway(profile, length, g=G, rtol=1e-10):
     y = np.zeros(2)
     edges = np.unique(np.concatenate([[0.0], profile.times]))
     for t0, t1 in zip(edges[:-1], edges[1:]):
-        a = float(profile.acceleration(0.5 * (t0 + t1)))
-        sol = solve_ivp(lambda t, y: [y[1], -(g * np.sin(y[0]) + a * np.cos(y[0])) / length],
-                        (t0, t1), y, method="DOP853", rtol=rtol, atol=1e-14)
+        a0 = float(profile.acceleration(t0 + 0.5 * (t1 - t0)))
+        slope = 0.0 if profile.order == 0 else float(np.sum(profile.jumps[profile.times <= t0]))
+        tm = t0 + 0.5 * (t1 - t0)
+
+        def rhs(t, y, a0=a0, slope=slope, tm=tm):      # a(t) is linear on the piece
+            a = a0 + slope * (t - tm)
+            return [y[1], -(g * np.sin(y[0]) + a * np.cos(y[0])) / length]
+        sol = solve_ivp(rhs, (t0, t1), y, method="DOP853", rtol=rtol, atol=1e-14)
         if sol.status != 0:
             raise AnalysisError(f"pendulum integration failed at t = {t0} s: {sol.message}")
         y = sol.y[:, -1]
