@@ -17,6 +17,7 @@ from ._common import pyplot, save, write_csv
 DESCRIPTION = "input shaping: residual sway vs frequency / rope-length error, move-time cost"
 LENGTH, DISTANCE, V_MAX, A_MAX = 20.0, 15.0, 1.0, 0.5    # m, m, m/s, m/s^2: trolley move
 EI_V = 0.05
+T_JERK = 1.0                     # s: the S-curve's acceleration ramp (jerk 0.5 m/s^3)
 NAMES = ("unshaped", "ZV", "ZVD", "ZVDD", "EI")
 DOUBLE = {"l1": 20.0, "l2": 3.0, "m1": 400.0, "m2": 2000.0}   # hook on 20 m, load on 3 m
 
@@ -65,13 +66,18 @@ def length_error(quick=False):
 def cost():
     """One row per shaper (and the swing-free trapezoid): move time, residual sway."""
     from ..analysis.shaping import (min_time_swing_free, nonlinear_residual_sway,
-                                    pendulum_omega, residual_sway, shape, trapezoid)
+                                    pendulum_omega, residual_sway, s_curve, shape,
+                                    trapezoid)
     w = pendulum_omega(LENGTH)
     move = trapezoid(DISTANCE, V_MAX, A_MAX)
     rows = []
-    cases = [(n, s, shape(move, s)) for n, s in _shapers(w).items()]
+    shapers = _shapers(w)
+    cases = [(n, s, shape(move, s)) for n, s in shapers.items()]
     free = min_time_swing_free(DISTANCE, V_MAX, A_MAX, LENGTH)
     cases.append(("swing-free trapezoid", None, free["profile"]))
+    smooth = s_curve(DISTANCE, V_MAX, A_MAX, A_MAX / T_JERK)
+    cases += [(f"S-curve t_j = {T_JERK:g} s", None, smooth),
+              (f"S-curve t_j = {T_JERK:g} s + ZV", shapers["ZV"], shape(smooth, shapers["ZV"]))]
     for n, s, p in cases:
         row = {"shaper": n, "shaper_duration_s": s.duration if s else float("nan"),
                "move_time_s": p.end, "extra_time_s": p.end - move.end,
