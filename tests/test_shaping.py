@@ -218,3 +218,31 @@ def test_shaped_s_curve_zero_residual_and_ode(zeta):
     small = sh.s_curve(0.06, 0.01, 0.008, 0.015)      # 100 x smaller: linear limit
     assert sh.nonlinear_residual_sway(small, L) == pytest.approx(
         sh.residual_sway(small, L), rel=1e-6)
+
+
+def test_energy_optimal_swing_free():
+    D, l = 15.0, 20.0
+    w = np.sqrt(G / l)
+    classic = sh.energy_optimal_swing_free(D, 17.0, l, swing_free=False)
+    np.testing.assert_allclose(classic["coefficients"][:2],
+                               [-6 * D / 17.0**2, 12 * D / 17.0**3], rtol=1e-13)
+    free = sh.min_time_swing_free(D, 1.0, 0.5, l)
+    T = free["time_s"]
+    r = sh.energy_optimal_swing_free(D, T, l)
+    assert r["position"](T) == pytest.approx(D, rel=1e-13)
+    assert abs(r["speed"](T)) < 1e-13 * D / T and abs(r["speed"](0.0)) == 0.0
+    h = 1e-4                      # the closed-form speed is the integral of a
+    assert (r["speed"](5.0 + h) - r["speed"](5.0 - h)) / (2 * h) == pytest.approx(
+        float(r["acceleration"](5.0)), rel=1e-7)
+    y = solve_ivp(lambda t, y: [y[1], -float(r["acceleration"](t)) / l - w * w * y[0]],
+                  (0, T), [0.0, 0.0], **TOL).y[:, -1]
+    scale = sh.residual_sway(sh.trapezoid(D, 1.0, 0.5), l)
+    assert np.hypot(y[0], y[1] / w) < 1e-8 * scale           # swing-free
+    # optimality: the swing-free trapezoid of the same duration meets the same
+    # constraints, so it cannot cost less (int a^2 = 2 a^2 t_a)
+    trap_cost = 2 * free["acceleration"]**2 * free["t_acc"]
+    assert r["cost"] < trap_cost
+    unconstrained = sh.energy_optimal_swing_free(D, T, l, swing_free=False)
+    assert r["cost"] > unconstrained["cost"]                   # the sway constraints cost
+    tab = r["table"](400)
+    assert tab["positions"][-1] == pytest.approx(D, rel=1e-13)

@@ -261,6 +261,10 @@ def check_shaping(files):
     both = dp["ZV*ZV both modes"]
     assert num(both["residual_mode1_rel"]) < 1e-12 and num(both["residual_mode2_rel"]) < 1e-12
     assert num(dp["ZV low mode"]["residual_mode2_rel"]) > 0.1
+    eo = read(files["shaping_energy_optimal.csv"])
+    trap, same = num(eo[0]["int_a2"]), num(eo[1]["int_a2"])
+    assert eo[1]["law"] == "energy-optimal swing-free" and same < trap   # optimal: cheaper
+    assert num(eo[2]["int_a2"]) < same                  # dropping the sway constraints
 
 
 CHECKS = {"damping": check_damping, "drive": check_drive, "eigensolvers": check_eigensolvers,

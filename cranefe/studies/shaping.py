@@ -7,7 +7,8 @@ Writes results/shaping_robustness.csv/.png (V(w/w_model); the plot also shows th
 residual sway of the move against the rope-length error, shaping_length_error.csv) and
 results/shaping_cost.csv (one row per shaper:
 move time, residual sway exact and with +/-10 % / +/-20 % rope-length error, width of the
-5 % insensitivity band) and results/shaping_double_pendulum.csv.
+5 % insensitivity band), results/shaping_double_pendulum.csv and
+results/shaping_energy_optimal.csv (least int a^2 swing-free moves).
 """
 
 import numpy as np
@@ -121,13 +122,35 @@ def double_pendulum():
     return rows
 
 
+def energy_optimal():
+    """The energy-optimal swing-free move (least int a^2) for durations from the
+    minimum-time swing-free trapezoid's up, beside the trapezoid and the optimum
+    without the sway constraints."""
+    from ..analysis.shaping import energy_optimal_swing_free, min_time_swing_free
+    free = min_time_swing_free(DISTANCE, V_MAX, A_MAX, LENGTH)
+    rows = [{"law": "swing-free trapezoid", "duration_s": free["time_s"],
+             "int_a2": 2 * free["acceleration"]**2 * free["t_acc"],
+             "peak_speed": V_MAX, "peak_acceleration": free["acceleration"]}]
+    for f in (1.0, 1.25, 1.5):
+        for sway in (True, False):
+            r = energy_optimal_swing_free(DISTANCE, f * free["time_s"], LENGTH,
+                                          swing_free=sway)
+            rows.append({"law": "energy-optimal" + (" swing-free" if sway else
+                                                    ", sway ignored"),
+                         "duration_s": r["duration_s"], "int_a2": r["cost"],
+                         "peak_speed": r["peak_speed"],
+                         "peak_acceleration": r["peak_acceleration"]})
+    return rows
+
+
 def run(outdir, quick=False):
     rob, err = robustness(quick), length_error(quick)
     rows, _ = cost()
     paths = [write_csv(outdir, "shaping_robustness.csv", rob),
              write_csv(outdir, "shaping_length_error.csv", err),
              write_csv(outdir, "shaping_cost.csv", rows),
-             write_csv(outdir, "shaping_double_pendulum.csv", double_pendulum())]
+             write_csv(outdir, "shaping_double_pendulum.csv", double_pendulum()),
+             write_csv(outdir, "shaping_energy_optimal.csv", energy_optimal())]
     plt = pyplot()
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4))
     for n in NAMES:

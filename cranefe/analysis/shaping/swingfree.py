@@ -51,3 +51,60 @@ def min_time_swing_free(distance, v_max, a_max, length, g=G, n_max=200):
     return {"profile": profile, "time_s": float(total), "acceleration": float(a),
             "t_acc": float(ta), "t_coast": float(s - ta), "family": family,
             "period_s": float(T)}
+
+
+def energy_optimal_swing_free(distance, duration, length, g=G, swing_free=True):
+    """The trolley move of a given duration with the least integral of a^2 (the drive
+    force squared: the copper losses of a drive that only accelerates the mass) that
+    ends at rest at the distance with the pendulum at rest (linear, undamped).
+
+    Constraints, linear in a(t): int a = 0 (speed back to 0), int (T - t) a = D (the
+    distance), int a cos(w t) = int a sin(w t) = 0 (the pendulum's Duhamel integral
+    int a(t) e^(i w (T - t)) dt is zero: no residual sway). Minimising int a^2 under
+    <a, g_k> = c_k gives a = sum_k lambda_k g_k with the Gram system G lambda = c,
+    G_kl = <g_k, g_l> (Gauss-Legendre, exact to round-off for these smooth integrands):
+      a(t) = l1 + l2 (T - t) + l3 cos(w t) + l4 sin(w t).
+    Without the sway constraints (swing_free=False) it is the classic
+    a = (6 D / T^2)(1 - 2 t / T). Returns a dict with ``acceleration``, ``speed``,
+    ``position`` (callables), ``coefficients``, ``cost`` (int a^2), ``peak_speed``,
+    ``peak_acceleration`` and ``table(n)`` for the operation engine.
+    """
+    D, T = float(distance), float(duration)
+    if not (D > 0 and T > 0 and length > 0):
+        raise ModelError("an energy-optimal move needs positive distance, duration and "
+                         f"length (got {distance}, {duration}, {length})")
+    w = np.sqrt(g / length)
+    k = 4 if swing_free else 2
+    basis = (lambda t: np.ones_like(t), lambda t: T - t, lambda t: np.cos(w * t),
+             lambda t: np.sin(w * t))[:k]
+    x, wq = np.polynomial.legendre.leggauss(max(64, int(4 * w * T) + 64))
+    t, wq = 0.5 * T * (x + 1), 0.5 * T * wq
+    B = np.array([b(t) for b in basis])
+    lam = np.linalg.solve((B * wq) @ B.T, np.array([0.0, D, 0.0, 0.0][:k]))
+    lam = np.concatenate([lam, np.zeros(4 - k)])
+
+    def acceleration(s):
+        s = np.asarray(s, float)
+        return lam[0] + lam[1] * (T - s) + lam[2] * np.cos(w * s) + lam[3] * np.sin(w * s)
+
+    def speed(s):
+        s = np.asarray(s, float)
+        return (lam[0] * s + lam[1] * (T * s - s**2 / 2) + lam[2] * np.sin(w * s) / w
+                + lam[3] * (1 - np.cos(w * s)) / w)
+
+    def position(s):
+        s = np.asarray(s, float)
+        return (lam[0] * s**2 / 2 + lam[1] * (T * s**2 / 2 - s**3 / 6)
+                + lam[2] * (1 - np.cos(w * s)) / w**2 + lam[3] * (s / w - np.sin(w * s) / w**2))
+
+    def table(n=200):
+        s = np.linspace(0.0, T, n + 1)
+        return {"times": s.tolist(), "values": speed(s).tolist(),
+                "positions": position(s).tolist()}
+
+    fine = np.linspace(0.0, T, 2001)
+    return {"acceleration": acceleration, "speed": speed, "position": position,
+            "table": table, "coefficients": lam, "duration_s": T,
+            "cost": float(np.sum(wq * acceleration(t)**2)),
+            "peak_speed": float(np.max(np.abs(speed(fine)))),
+            "peak_acceleration": float(np.max(np.abs(acceleration(fine))))}
