@@ -10,6 +10,7 @@ factor exp(i w_d t_N) has modulus one.
 """
 
 from dataclasses import dataclass
+from math import comb
 
 import numpy as np
 import scipy.optimize as so
@@ -77,7 +78,6 @@ def _binomial(name, omega, zeta, n):
     (Singer & Seering 1990: the derivatives of V with respect to w vanish to order n-1)."""
     half, K = _check(omega, zeta)
     i = np.arange(n + 1)
-    from math import comb
     A = np.array([comb(n, k) for k in i], float) * K**i / (1 + K)**n
     return Shaper(name, i * half, A, float(omega), float(zeta))
 
