@@ -233,8 +233,43 @@ def check_validation(files):
             assert err == "< 1e-11" or num(err) < 1e-10, r       # peers: round-off
 
 
+def check_shaping(files):
+    """Input shaping (studies/shaping.py, docs/loads.md): the durations are T/2, T, 1.5 T
+    and T; the shaped residuals vanish (linear, round-off); EI leaves V = 5 % of the
+    unshaped residual 4 (a/g) |sin(w t_a/2) sin(w s/2)|; the 5 % bands are the closed
+    forms 4 asin(0.05)/pi (ZV), 4 asin(sqrt 0.05)/pi (ZVD), 2 - 2 acos((3V-1)/(1+V))/pi
+    (EI) to the study's grid step 1e-5; the two-mode shaper cancels both modes."""
+    rows = {r["shaper"]: r for r in read(files["shaping_cost.csv"])}
+    w, a, l = np.sqrt(G / 20.0), 0.5, 20.0
+    T = 2 * np.pi / w
+    for name, f in (("ZV", 0.5), ("ZVD", 1.0), ("ZVDD", 1.5), ("EI", 1.0)):
+        assert num(rows[name]["shaper_duration_s"]) == pytest.approx(f * T, rel=CSV_RTOL)
+    for name in ("ZV", "ZVD", "ZVDD", "swing-free trapezoid"):
+        assert num(rows[name]["residual_deg"]) < 1e-10
+        assert 1e-6 < num(rows[name]["residual_nonlinear_deg"]) < 1e-2   # reported, small
+    ref = np.degrees(4 * a / G * abs(np.sin(w * 1.0) * np.sin(w * 7.5)))   # t_a = 2, s = 15 s
+    assert num(rows["unshaped"]["residual_deg"]) == pytest.approx(ref, rel=CSV_RTOL)
+    assert num(rows["EI"]["residual_deg"]) == pytest.approx(0.05 * ref, rel=CSV_RTOL)
+    wl = np.sqrt(G / 22.0)                       # rope 10 % longer than assumed
+    ref = np.degrees(4 * a / G * abs(np.sin(wl * 1.0) * np.sin(wl * 7.5)))
+    assert num(rows["unshaped"]["residual_deg_length+10%"]) == pytest.approx(ref, rel=CSV_RTOL)
+    for name, band in (("ZV", 4 * np.arcsin(0.05) / np.pi),
+                       ("ZVD", 4 * np.arcsin(np.sqrt(0.05)) / np.pi),
+                       ("EI", 2 - 2 * np.arccos((0.15 - 1) / 1.05) / np.pi)):
+        assert num(rows[name]["band_5pct"]) == pytest.approx(band, abs=3e-5)
+    dp = {r["shaper"]: r for r in read(files["shaping_double_pendulum.csv"])}
+    both = dp["ZV*ZV both modes"]
+    assert num(both["residual_mode1_rel"]) < 1e-12 and num(both["residual_mode2_rel"]) < 1e-12
+    assert num(dp["ZV low mode"]["residual_mode2_rel"]) > 0.1
+    eo = read(files["shaping_energy_optimal.csv"])
+    trap, same = num(eo[0]["int_a2"]), num(eo[1]["int_a2"])
+    assert eo[1]["law"] == "energy-optimal swing-free" and same < trap   # optimal: cheaper
+    assert num(eo[2]["int_a2"]) < same                  # dropping the sway constraints
+
+
 CHECKS = {"damping": check_damping, "drive": check_drive, "eigensolvers": check_eigensolvers,
-          "luffing": check_luffing, "ropes": check_ropes, "sweeps": check_sweeps,
+          "luffing": check_luffing, "ropes": check_ropes, "shaping": check_shaping,
+          "sweeps": check_sweeps,
           "transient": check_transient, "validation": check_validation}
 
 
