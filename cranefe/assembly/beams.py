@@ -4,7 +4,7 @@ import numpy as np
 
 from ..elements import beam_axes, beam_stiffness, to_global
 from .coo import Blocks
-from .materials import element_sections
+from .materials import element_sections, shear_parameters
 from .springs import member_geometry
 
 
@@ -20,5 +20,6 @@ def beam_blocks(model, layout, mm):
     b = np.flatnonzero(mm.beam)
     e, l = member_geometry(model, layout, mm, b)
     axes = beam_axes(e, mm.orientation[b])
-    k = beam_stiffness(sec.E[b], sec.G[b], sec.A[b], sec.Iy[b], sec.Iz[b], sec.J[b], l)
+    k = beam_stiffness(sec.E[b], sec.G[b], sec.A[b], sec.Iy[b], sec.Iz[b], sec.J[b], l,
+                       *shear_parameters(sec, b, l))
     return Blocks(beam_dofs(layout, mm, b), to_global(k, axes)), sec.psi[b]

@@ -11,7 +11,7 @@ from ..errors import ModelError
 from ..model import GROUND
 from .beams import beam_dofs
 from .coo import Triplets
-from .materials import element_materials, element_sections
+from .materials import element_materials, element_sections, shear_parameters
 from .springs import member_geometry
 
 
@@ -121,7 +121,8 @@ def _beams(model, dofs, sec, b, t, f):
     axes = beam_axes(e, mm.orientation[b])
     mb = np.where(sec.lumped[b][:, None, None],
                   beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l, lumped=True),
-                  beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l))
+                  beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l, False,
+                            *shear_parameters(sec, b, l), rotary=sec.timoshenko[b]))
     mg = to_global(mb, axes)
     idx = beam_dofs(layout, mm, b)
     t.add_blocks(idx, mg)

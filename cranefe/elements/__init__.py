@@ -5,14 +5,16 @@ element arrays. Nothing here sees a `Model`, a DOF map or a global index: assemb
 - `ropes`: spans of ropes, axial springs and trusses (length, direction, elongation
   rows, tension stiffness, rope element mass, whole-rope force at any geometry);
 - `bodies`: rigid bodies (cross-product matrices, rigid mass, load stiffness);
-- `beams`: 3D Euler-Bernoulli beams (elastic, mass and geometric stiffness, rotations).
+- `beams`: 3D Euler-Bernoulli and Timoshenko beams (elastic, mass and geometric stiffness, rotations).
 """
 
-from .beams import beam_axes, beam_geometric, beam_mass, beam_stiffness, to_global
+from .beams import (beam_axes, beam_geometric, beam_mass, beam_stiffness, shear_factors,
+                    to_global)
 from .bodies import load_stiffness, rigid_mass, skew
 from .ropes import (RopeForce, elongation_rows, rope_force, rope_mass, span_geometry,
                     string_stiffness)
 
-__all__ = ["beam_axes", "beam_geometric", "beam_mass", "beam_stiffness", "to_global",
+__all__ = ["beam_axes", "beam_geometric", "beam_mass", "beam_stiffness", "shear_factors",
+           "to_global",
            "load_stiffness", "rigid_mass", "skew", "elongation_rows", "rope_mass",
            "span_geometry", "string_stiffness", "rope_force", "RopeForce"]

@@ -759,7 +759,8 @@ def _mesh_member(name, mesh, r, coords, node_names, names, planar):
 def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None):
     e = f"members.{name}"
     r.keys(m, e, {"type", "nodes", "pairs", "mesh", "E", "G", "A", "Iy", "Iz", "J", "rho",
-                  "orientation", "elements", "mass", "psi"}, required=("type", "E", "A"))
+                  "orientation", "elements", "mass", "psi", "Asy", "Asz",
+                  "shear_coefficient"}, required=("type", "E", "A"))
     given = [k for k in ("nodes", "pairs", "mesh") if k in m]
     if len(given) != 1:
         r.fail(e, "give exactly one of 'nodes' (a chain), 'pairs' (a list of [A, B]) or "
@@ -809,8 +810,9 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
             kw["orientation"] = r.unit(m["orientation"], f"{e}.orientation")
         elif not planar:
             r.fail(e, "a 3D beam needs 'orientation' (a vector in its local x-z plane)")
+        kw.update(_shear_areas(m, e, r, planar))
     else:
-        for k in ("G", "Iy", "Iz", "J", "orientation"):
+        for k in ("G", "Iy", "Iz", "J", "orientation", "Asy", "Asz", "shear_coefficient"):
             if k in m:
                 r.fail(f"{e}.{k}", "a truss has only axial stiffness; remove it")
     elements = r.integer(m.get("elements", 1), f"{e}.elements", minimum=1)
@@ -824,3 +826,32 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
                   r.number(m.get("rho", 0.0), f"{e}.rho", nonneg=True),
                   elements=elements, mass=mass, pairs=pairs,
                   psi=r.number(m.get("psi", 0.0), f"{e}.psi", nonneg=True), **kw)
+
+
+def _shear_areas(m, e, r, planar):
+    """Shear areas of a Timoshenko beam: `Asy`, `Asz` (m^2) or `shear_coefficient`
+    k or [ky, kz] (As = k A); none: Euler-Bernoulli ({})."""
+    given = [k for k in ("Asy", "Asz") if k in m]
+    if "shear_coefficient" in m:
+        if given:
+            r.fail(e, "give shear areas 'Asy', 'Asz' or a 'shear_coefficient', not both")
+        v = m["shear_coefficient"]
+        ks = r.vector(v, f"{e}.shear_coefficient", n=2) if isinstance(v, list) \
+            else np.array([r.number(v, f"{e}.shear_coefficient", positive=True)] * 2)
+        if np.any(ks <= 0):
+            r.fail(f"{e}.shear_coefficient", "must be > 0")
+        A = r.number(m["A"], f"{e}.A", positive=True)
+        out = {"Asy": float(ks[0] * A), "Asz": float(ks[1] * A)}
+    elif given:
+        need = ("Asz",) if planar else ("Asy", "Asz")
+        for k in need:
+            if k not in m:
+                r.fail(e, f"a {'planar ' if planar else ''}Timoshenko beam needs '{k}' "
+                       "(the shear area for shear along local "
+                       f"{k[-1]}), or give a 'shear_coefficient'")
+        out = {k: r.number(m[k], f"{e}.{k}", positive=True) for k in given}
+    else:
+        return {}
+    if "G" not in m:
+        r.fail(e, "a Timoshenko beam (shear areas given) needs the shear modulus 'G'")
+    return out

@@ -114,6 +114,13 @@ class Member:
     mass: str = "consistent"
     psi: float = 0.0
     pairs: np.ndarray = None     # (k, 2) separate two-node pieces (extension), else None
+    Asy: float = 0.0             # shear areas (Timoshenko beam); 0: no shear deformation
+    Asz: float = 0.0
+
+    @property
+    def timoshenko(self):
+        """Shear deformation and rotary inertia (shear areas given)."""
+        return self.Asy > 0 or self.Asz > 0
 
 
 @dataclass(frozen=True)

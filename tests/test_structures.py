@@ -1,0 +1,152 @@
+"""Structures as engineers model them (issue 19): Timoshenko beams, rotary inertia of
+point masses on beam nodes, supports and member-end releases, self-weight buckling."""
+
+import numpy as np
+import pytest
+
+from cranefe.analysis.modal import modes
+from cranefe.cases import matched, timoshenko_simply_supported
+from cranefe.elements import beam_mass, beam_stiffness, shear_factors
+from cranefe.elements.beams import _timoshenko_mass4
+
+
+# ------------------------------------------------------------------ Timoshenko beams
+
+def _timoshenko_shapes(xi, l, phi):
+    """Static Timoshenko shape functions of deflection v, rotation theta and their
+    derivatives at xi = x / l (Friedman & Kosmatka 1993, eq. 13), independent of the
+    kernel's closed forms."""
+    mu = 1 / (1 + phi)
+    v = mu * np.array([2 * xi**3 - 3 * xi**2 - phi * xi + 1 + phi,
+                       l * (xi**3 - (2 + phi / 2) * xi**2 + (1 + phi / 2) * xi),
+                       -2 * xi**3 + 3 * xi**2 + phi * xi,
+                       l * (xi**3 - (1 - phi / 2) * xi**2 - phi / 2 * xi)])
+    dv = mu / l * np.array([6 * xi**2 - 6 * xi - phi,
+                            l * (3 * xi**2 - (4 + phi) * xi + 1 + phi / 2),
+                            -6 * xi**2 + 6 * xi + phi,
+                            l * (3 * xi**2 - (2 - phi) * xi - phi / 2)])
+    t = mu * np.array([6 / l * (xi**2 - xi), 3 * xi**2 - (4 + phi) * xi + 1 + phi,
+                       -6 / l * (xi**2 - xi), 3 * xi**2 - (2 - phi) * xi])
+    dt = mu / l * np.array([6 / l * (2 * xi - 1), 6 * xi - 4 - phi, -6 / l * (2 * xi - 1),
+                            6 * xi - 2 + phi])
+    return v, dv, t, dt
+
+
+def test_timoshenko_kernels_are_the_energies_of_their_shape_functions():
+    # K = int EI t' t'^T + k G A (v' - t)(v' - t)^T, M = int rho A v v^T + rho I t t^T,
+    # by 8-point Gauss (exact for these polynomials); round-off is the only difference
+    E, G, A, I, rho, As, l = 2.0e11, 8.0e10, 0.02, 3.0e-4, 7850.0, 0.015, 0.9
+    phi_y, phi_z = shear_factors(E, G, I, I, np.array([As]), np.array([As]), np.array([l]))
+    phi = phi_y[0]
+    assert phi == pytest.approx(12 * E * I / (G * As * l**2), rel=1e-15)
+    xg, wg = np.polynomial.legendre.leggauss(8)
+    K, M = np.zeros((4, 4)), np.zeros((4, 4))
+    for xi, w in zip((xg + 1) / 2, wg / 2):
+        v, dv, t, dt = _timoshenko_shapes(xi, l, phi)
+        K += w * l * (E * I * np.outer(dt, dt) + G * As * np.outer(dv - t, dv - t))
+        M += w * l * (rho * A * np.outer(v, v) + rho * I * np.outer(t, t))
+    k12 = beam_stiffness(np.array([E]), np.array([G]), np.array([A]), np.array([I]),
+                         np.array([I]), np.array([1e-4]), np.array([l]), phi_y, phi_z)[0]
+    m12 = beam_mass(np.array([rho]), np.array([A]), np.array([I]), np.array([I]),
+                    np.array([l]), False, phi_y, phi_z)[0]
+    xy = [1, 5, 7, 11]                       # (v, theta_z) in the local x-y plane
+    assert k12[np.ix_(xy, xy)] == pytest.approx(K, rel=1e-13, abs=1e-13 * abs(K).max())
+    assert m12[np.ix_(xy, xy)] == pytest.approx(M, rel=1e-13, abs=1e-13 * abs(M).max())
+    # x-z plane: w and theta_y = -w', the same blocks with the coupling signs flipped
+    s = np.array([1, -1, 1, -1])
+    xz = [2, 4, 8, 10]
+    assert k12[np.ix_(xz, xz)] == pytest.approx(K * np.outer(s, s), rel=1e-13,
+                                                abs=1e-13 * abs(K).max())
+
+
+def test_no_shear_area_is_the_euler_bernoulli_kernel_exactly():
+    ne = 3
+    E, G, A, Iy, Iz, J = (np.full(ne, x) for x in (2e11, 8e10, 0.01, 2e-4, 3e-4, 1e-4))
+    l = np.array([0.5, 1.0, 2.0])
+    phi_y, phi_z = shear_factors(E, G, Iy, Iz, np.zeros(ne), np.zeros(ne), l)
+    assert not phi_y.any() and not phi_z.any()
+    eb = beam_stiffness(E, G, A, Iy, Iz, J, l)
+    assert np.array_equal(beam_stiffness(E, G, A, Iy, Iz, J, l, phi_y, phi_z), eb)
+    # without rotary inertia the Timoshenko mass at phi = 0 is the cubic one (to round-off)
+    m_eb = beam_mass(np.full(ne, 7850.0), A, Iy, Iz, l)
+    m_t = beam_mass(np.full(ne, 7850.0), A, Iy, Iz, l, False, phi_y, phi_z,
+                    rotary=np.zeros(ne))
+    assert m_t == pytest.approx(m_eb, rel=1e-14, abs=1e-14 * abs(m_eb).max())
+    rot = _timoshenko_mass4(np.zeros(1), np.ones(1), np.ones(1), np.zeros(1))[0]
+    # rotary inertia alone: the Rayleigh term rho I / (30 l) [36, 3l, -36, 3l; ...]
+    assert rot * 30 == pytest.approx(np.array([[36, 3, -36, 3], [3, 4, -3, -1],
+                                               [-36, -3, 36, -3], [3, -1, -3, 4]]), rel=1e-14)
+
+
+def test_timoshenko_cantilever_tip_deflection_is_exact_with_one_element():
+    # P L^3 / (3 E I) + P L / (G As): the static shape functions are exact for end loads
+    E, G, I, As, L, P = 2.0e11, 8.0e10, 2.0e-4, 0.01, 2.0, 1.0e4
+    phi_y, _ = shear_factors(E, G, I, I, np.array([As]), np.array([As]), np.array([L]))
+    k = beam_stiffness(*(np.array([x]) for x in (E, G, 0.02, I, I, 1e-4, L)), phi_y,
+                       phi_y)[0]
+    free = [7, 11]
+    d = np.linalg.solve(k[np.ix_(free, free)], [P, 0.0])
+    assert d[0] == pytest.approx(P * L**3 / (3 * E * I) + P * L / (G * As), rel=1e-13)
+
+
+def _run(model_from, text, name):
+    return modes(model_from(text, name))
+
+
+def test_fv5_deep_beam_timoshenko_within_half_a_percent(model_from):
+    # NAFEMS FV5 (square 2 m x 2 m, L = 10 m, pinned ends): 42.65 and 148.15 Hz published;
+    # Cowper's shear coefficient of a rectangle, 32 elements (discretisation 4e-4 on the
+    # second frequency, see the convergence test)
+    text, exact = timoshenko_simply_supported(elements=32)
+    f = matched(_run(model_from, text, "fv5.yaml").omega, exact["omega"][:2]) / (2 * np.pi)
+    err = f / exact["published_hz"] - 1
+    assert np.all(np.abs(err) < 5e-3), err
+    assert np.all(np.abs(err) < 5e-4)         # measured: -8.4e-5 and +4.1e-4
+
+
+def test_fv5_euler_bernoulli_limit_overestimates_as_known(model_from):
+    # without shear areas the members are Euler-Bernoulli: +6.3 % and +22 % on FV5
+    text, exact = timoshenko_simply_supported(elements=32, shear=False)
+    w = matched(_run(model_from, text, "fv5eb.yaml").omega, exact["omega_euler_bernoulli"][:2])
+    assert w == pytest.approx(exact["omega_euler_bernoulli"][:2], rel=2e-6)  # h^4, 32 el.
+    over = w / (2 * np.pi) / exact["published_hz"] - 1
+    assert over == pytest.approx([0.063, 0.224], abs=1.5e-3)
+
+
+def test_simply_supported_timoshenko_beam_converges_at_order_two(model_from):
+    # the element's shear force is constant (static shape functions), so the shear
+    # energy converges at O(h) in the energy norm and the frequencies at O(h^2), from
+    # above (consistent mass); the Euler-Bernoulli limit has O(h^4)
+    Ns = [4, 8, 16, 32]
+    err = []
+    for N in Ns:
+        text, exact = timoshenko_simply_supported(elements=N)
+        w = matched(_run(model_from, text, f"ss{N}.yaml").omega, exact["omega"])
+        err.append(w / exact["omega"] - 1)
+    err = np.array(err)
+    assert np.all(err > 0)
+    for mode in range(3):
+        slope = -np.polyfit(np.log(Ns[1:]), np.log(err[1:, mode]), 1)[0]
+        assert slope == pytest.approx(2.0, abs=0.05), (mode, slope)
+    assert err[-1, 0] < 4e-5
+
+
+@pytest.mark.parametrize("keys, message", [
+    ("Asy: 0.01, Asz: 0.01, shear_coefficient: 0.8", "not both"),
+    ("Asz: 0.01", "needs the shear modulus 'G'"),
+    ("G: 8e10, Asz: -1", "Asz"),
+])
+def test_bad_shear_areas_name_the_entry(model_from, keys, message):
+    from cranefe.errors import ModelError
+    text = f"""
+    cranefe: 1
+    plane: xz
+    nodes: {{O: [0, 0, 0], T: [10, 0, 0]}}
+    ground: [O]
+    members:
+      b: {{type: beam, nodes: [O, T], E: 2e11, A: 0.01, Iy: 2e-4, {keys}}}
+    effects: {{structure: flexible}}
+    """
+    with pytest.raises(ModelError, match=message) as info:
+        model_from(text)
+    assert "members.b" in str(info.value)
