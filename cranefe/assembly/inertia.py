@@ -53,7 +53,9 @@ def _carriers_of(model, dofs, i):
 
 
 def _point_masses(model, dofs, bodies, t, f):
-    """A mass on a body adds to it exactly; a free node's mass is its own."""
+    """A mass on a body adds to it exactly; a free node's mass is its own, and its
+    rotary inertia goes to the node's rotations (which exist where beams meet; elsewhere
+    they have no coordinates and it drops out)."""
     layout = dofs.layout
     pm = model.masses
     for i, m, J in zip(pm.nodes, pm.mass, pm.inertia):
@@ -65,6 +67,8 @@ def _point_masses(model, dofs, bodies, t, f):
             idx = layout.node([i])
             t.add_blocks(idx, m * np.eye(3)[None])
             f[idx[0]] += m * model.gravity
+            if np.any(J):
+                t.add_blocks(layout.rot([i]), J[None])
 
 
 def _rigid_members(model, dofs, bodies):

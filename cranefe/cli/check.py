@@ -52,7 +52,7 @@ def run(args):
         c = condense(system)
         qc, massless = list(c.quasi_cyclic), list(c.massless)
     for i, m in zip(model.masses.nodes, model.masses.inertia):
-        if system.dofs.carrier[i] == -2 and np.any(m):
+        if system.dofs.carrier[i] == -2 and np.any(m) and not _rotates(system.dofs, i):
             warnings.append(f"rotary inertia of the point mass at free node "
                             f"'{model.node_names[i]}' is ignored (no rotation there)")
     doc = {"model": model.name, "file": model.file, "scene": model.scene,
@@ -91,3 +91,9 @@ def run(args):
     for w in warnings:
         print(f"  warning: {w}")
     return 0
+
+
+def _rotates(dofs, i):
+    """Whether node i has rotations (beams meet there): a point mass's rotary inertia
+    counts there."""
+    return dofs.T[dofs.layout.rot(i)].nnz > 0
