@@ -320,3 +320,36 @@ effects: {{structure: flexible}}
              for k in np.flatnonzero(np.sign(vals[:-1]) != np.sign(vals[1:]))][:modes]
     beta = np.array(roots)
     return text, {"omega": beta**2 * np.sqrt(EI / m)}
+
+
+def nafems_fv2(elements=16, E=200.0e9, rho=8000.0, h=0.125, R=5.0, axial_factor=1.0):
+    """NAFEMS FV2, the pin-ended double cross, in-plane vibration (here in the x-z plane):
+    eight arms of square section h x h from the centre C to pinned ends at radius R, 45
+    degrees apart, written with `supports: {Pk: pinned}`.
+
+    The published family (11.336; 17.709 x 7; 45.345; 57.390 x 7 Hz) is that of arms with
+    the centre fixed in translation: pinned-pinned arms (beta L = pi, 2 pi) when the
+    centre turns, clamped-pinned (beta L = 3.9266, 7.0686, from tan bL = tanh bL) when
+    it does not; f = (beta L)^2 / (2 pi R^2) sqrt(E I / (rho A)). Axially flexible arms
+    let the centre translate in two of the clamped-pinned modes of each family, which
+    moves the arms' axial inertia and lowers those pairs; `axial_factor` multiplies A and
+    divides rho (rho A and E I unchanged) to stiffen the arms axially.
+    """
+    ang = np.arange(8) * np.pi / 4
+    nodes = ", ".join(f"P{k}: [{float(R * np.cos(a))!r}, 0, {float(R * np.sin(a))!r}]"
+                      for k, a in enumerate(ang))
+    A, I = h * h, h**4 / 12
+    arms = "\n".join(f"  arm{k}: {{type: beam, nodes: [C, P{k}], E: {E!r}, "
+                     f"A: {A * axial_factor!r}, Iy: {I!r}, rho: {rho / axial_factor!r}, "
+                     f"elements: {elements}}}" for k in range(8))
+    text = (f"cranefe: 1\nname: NAFEMS FV2 pin-ended double cross\nplane: xz\n"
+            f"gravity: [0, 0, 0]\nnodes: {{C: [0, 0, 0], {nodes}}}\n"
+            "supports: {" + ", ".join(f"P{k}: pinned" for k in range(8)) + "}\n"
+            f"members:\n{arms}\neffects: {{structure: flexible}}\n")
+    bl_cp = [so.brentq(lambda b: np.tan(b) - np.tanh(b), k * np.pi + 0.1, k * np.pi + 1.5,
+                       xtol=1e-15) for k in (1, 2)]
+    bl = np.array([np.pi] + [bl_cp[0]] * 7 + [2 * np.pi] + [bl_cp[1]] * 7)
+    f = bl**2 / (2 * np.pi * R**2) * np.sqrt(E * I / (rho * A))
+    return text, {"omega": 2 * np.pi * f,
+                  "published_hz": np.array([11.336] + [17.709] * 7 + [45.345] + [57.390] * 7),
+                  "centre_translates": np.array([1, 2, 9, 10])}

@@ -195,3 +195,118 @@ ropes:
         assert main(["check", str(path), "--json"]) == 0
         warnings = json.loads(capsys.readouterr().out)["warnings"]
         assert any("rotary inertia" in w for w in warnings) == warned, warnings
+
+
+# ------------------------------------------------------------------------------ supports
+
+def test_fv2_double_cross_with_pinned_supports(model_from):
+    # 16 elements per arm: O(h^4) discretisation error below 3e-5 of the exact family
+    from cranefe.cases import nafems_fv2
+    text, exact = nafems_fv2(elements=16)
+    w = _run(model_from, text, "fv2.yaml").omega[:16]
+    moves = np.zeros(16, dtype=bool)
+    moves[exact["centre_translates"]] = True
+    err = w / exact["omega"] - 1
+    assert np.all(np.abs(err[~moves]) < 3e-5), err      # measured <= 2.6e-5
+    published = w / (2 * np.pi) / exact["published_hz"] - 1
+    assert np.all(np.abs(published[~moves]) < 5e-5)     # 5 digits published
+    # where the centre translates (axially flexible arms carry their axial inertia with
+    # it) the pairs are lower: -1.6e-3 and -5.5e-3 at 17.709 and 57.390 Hz
+    assert err[moves] == pytest.approx([-1.62e-3, -1.62e-3, -5.49e-3, -5.49e-3], abs=1e-4)
+    # with arms 1000 times stiffer axially (same rho A, E I) the centre stays put; 8
+    # elements (their discretisation error is below 4.2e-4, the shift 1.6e-3 and 5.5e-3)
+    text, _ = nafems_fv2(elements=8, axial_factor=1000.0)
+    w = _run(model_from, text, "fv2_stiff.yaml").omega[:16]
+    assert np.all(np.abs(w / exact["omega"] - 1) < 5e-4)
+
+
+def _fv5_3d(e_x, e_y, elements=16, shear=True, axes=True):
+    """NAFEMS FV5 in 3D along the unit vector e_x (local y along e_y): end A restrained in
+    ux, uy, uz, rx and end B in uy, uz, in the beam's axes (given `axes` when skew)."""
+    E, nu, rho, L, h = 200.0e9, 0.3, 8000.0, 10.0, 2.0
+    G = E / (2 * (1 + nu))
+    k = 10 * (1 + nu) / (12 + 11 * nu)
+    e_x, e_y = np.asarray(e_x, float), np.asarray(e_y, float)
+    e_z = np.cross(e_x, e_y)
+    ax = f"axes: {[list(map(float, v)) for v in (e_x, e_y, e_z)]}" if axes else ""
+    B = list(map(float, L * e_x))
+    shear_key = f", shear_coefficient: {k!r}" if shear else ""
+    return f"""
+    cranefe: 1
+    gravity: [0, 0, 0]
+    nodes: {{A: [0, 0, 0], B: {B}}}
+    supports:
+      A: {{fix: [ux, uy, uz, rx], {ax}}}
+      B: {{fix: [uy, uz], {ax}}}
+    members:
+      beam: {{type: beam, nodes: [A, B], E: {E!r}, G: {G!r}, A: {h * h!r},
+             Iy: {h**4 / 12!r}, Iz: {h**4 / 12!r}, J: {0.1406 * h**4!r}, rho: {rho!r},
+             orientation: {list(map(float, e_z))}, elements: {elements}{shear_key}}}
+    effects: {{structure: flexible}}
+    """
+
+
+def test_fv5_in_3d_with_per_direction_supports(model_from):
+    from cranefe.cases import timoshenko_simply_supported
+    _, exact = timoshenko_simply_supported()
+    E, nu, rho, L, h = 200.0e9, 0.3, 8000.0, 10.0, 2.0
+    G = E / (2 * (1 + nu))
+    w = _run(model_from, _fv5_3d([1, 0, 0], [0, 1, 0], elements=32), "fv5_3d.yaml").omega
+    # the flexural family in both planes (pairs), torsion and extension fixed-free
+    torsion = np.pi / (2 * L) * np.sqrt(G * 0.1406 * h**4 / (rho * h**4 / 6))
+    extension = np.pi / (2 * L) * np.sqrt(E / rho)                   # 125 Hz
+    expect = np.sort(np.r_[np.repeat(exact["omega"][:2], 2), torsion, extension])
+    got = w[:6]
+    assert got == pytest.approx(expect, rel=5e-4)        # Timoshenko discretisation, 32 el.
+    assert extension / (2 * np.pi) == pytest.approx(125.0, rel=1e-12)
+    # the same beam along a skew direction, restrained in its own axes: the same modes
+    ex = np.array([1.0, 2.0, 2.0]) / 3
+    ey = np.array([2.0, 1.0, -2.0]) / 3
+    skew = _run(model_from, _fv5_3d(ex, ey, elements=32), "fv5_skew.yaml").omega
+    assert skew[:8] == pytest.approx(w[:8], rel=1e-9)    # round-off of the rotation
+
+
+def test_supports_in_global_axes_and_pinned_shorthand(model_from):
+    # an Euler-Bernoulli beam along x with supports in global axes, fixed and pinned,
+    # in both planes
+    E, A, I, rho, L = 2.1e11, 1.0e-2, 2.0e-4, 7850.0, 10.0
+    text = f"""
+    cranefe: 1
+    gravity: [0, 0, 0]
+    nodes: {{A: [0, 0, 0], B: [{L}, 0, 0]}}
+    supports: {{A: fixed, B: pinned}}
+    members:
+      b: {{type: beam, nodes: [A, B], E: {E}, G: 8.1e10, A: {A}, Iy: {I}, Iz: {I},
+          J: 1.0e-4, rho: {rho}, orientation: [0, 0, 1], elements: 16}}
+    effects: {{structure: flexible}}
+    """
+    w = _run(model_from, text, "pp.yaml").omega
+    # A fixed, B pinned: a propped cantilever, beta L = 3.9266, 7.0686 (tan = tanh)
+    import scipy.optimize as so
+    bl = np.array([so.brentq(lambda b: np.tan(b) - np.tanh(b), k * np.pi + 0.1,
+                             k * np.pi + 1.5, xtol=1e-15) for k in (1, 2)])
+    exact = bl**2 / L**2 * np.sqrt(E * I / (rho * A))
+    # cubic elements, 16: O(h^4) discretisation, measured +2.5e-6 and +2.6e-5
+    assert matched(w, exact) / exact - 1 == pytest.approx([2.5e-6, 2.6e-5], rel=0.05)
+    assert np.sum(np.abs(w / exact[0] - 1) < 1e-5) == 2     # in both planes
+
+
+@pytest.mark.parametrize("entry, message", [
+    ("O: pinned", "is in ground"),
+    ("T: [ux, ux]", "at most once"),
+    ("T: [uw]", "at most once"),
+    ("T: hinged", "'pinned' or 'fixed'"),
+    ("T: {fix: [ux], axes: [[1, 0, 0], [1, 1, 0], [0, 0, 1]]}", "orthogonal"),
+    ("X: pinned", "unknown node"),
+])
+def test_bad_supports_name_the_entry(model_from, entry, message):
+    from cranefe.errors import ModelError
+    text = f"""
+    cranefe: 1
+    nodes: {{O: [0, 0, 0], T: [10, 0, 0]}}
+    ground: [O]
+    supports: {{{entry}}}
+    """
+    with pytest.raises(ModelError, match=message) as info:
+        model_from(text)
+    assert "supports." in str(info.value)

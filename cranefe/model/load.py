@@ -13,10 +13,10 @@ import numpy as np
 
 from ..errors import ModelError
 from .model import (EFFECT_CHOICES, GROUND, Body, Drum, Effects, Joint, LinearDrive,
-                    Member, Model, PointMasses, Rope, Spring)
+                    Member, Model, PointMasses, Rope, Spring, Support)
 from .yamlio import read_yaml
 
-MODEL_KEYS = {"cranefe", "name", "plane", "gravity", "nodes", "ground", "masses",
+MODEL_KEYS = {"cranefe", "name", "plane", "gravity", "nodes", "ground", "supports", "masses",
               "bodies", "joints", "springs", "drums", "ropes", "members",
               "linear_drives", "effects"}
 SCENE_KEYS = {"cranefe", "scene", "model", "effects", "analysis"}
@@ -594,6 +594,7 @@ def _build_model(data, file, text, r):
     c = _Ctx(r, _Names(r), planar)
     _nodes(data, c)
     ground = _ground(data, c)
+    supports = _supports(data, c, ground)
     masses = _masses(data, c)
     bodies, owner = _bodies(c)
     joints = _joints(data, c)
@@ -610,7 +611,7 @@ def _build_model(data, file, text, r):
         node_names=node_names, coords=coords, ground=np.array(ground, dtype=int),
         masses=masses, bodies=tuple(bodies), joints=tuple(joints), springs=tuple(springs),
         drums=tuple(drums), ropes=tuple(ropes), members=tuple(members),
-        linear_drives=tuple(linear), effects=effects)
+        linear_drives=tuple(linear), effects=effects, supports=supports)
 
 
 def _inertia(v, entry, planar, r, allow_zero):
@@ -855,3 +856,43 @@ def _shear_areas(m, e, r, planar):
     if "G" not in m:
         r.fail(e, "a Timoshenko beam (shear areas given) needs the shear modulus 'G'")
     return out
+
+
+SUPPORT_COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
+SUPPORT_SHORTHANDS = {"pinned": ("ux", "uy", "uz"), "fixed": SUPPORT_COMPONENTS}
+
+
+def _supports(data, c, ground):
+    """Per-direction restraints of nodes: `NODE: [ux, uz, ry]`, `pinned`, `fixed`, or
+    `{fix: [...], axes: [x', y', z']}` with the components along given orthonormal axes."""
+    r, out = c.r, []
+    for n, v in r.mapping(data.get("supports"), "supports").items():
+        e = f"supports.{n}"
+        i = c.node(n, e)
+        if i in ground:
+            r.fail(e, f"node '{n}' is in ground (fixed in every direction); list it in one "
+                   "of them")
+        axes = np.eye(3)
+        if isinstance(v, dict):
+            r.keys(v, e, {"fix", "axes"}, required=("fix",))
+            if "axes" in v:
+                rows = r.listing(v["axes"], f"{e}.axes")
+                if len(rows) != 3:
+                    r.fail(f"{e}.axes", "give three axes x', y', z' (rows of a rotation)")
+                axes = np.array([r.unit(a, f"{e}.axes[{k}]") for k, a in enumerate(rows)])
+                if np.abs(axes @ axes.T - np.eye(3)).max() > 1e-9:
+                    r.fail(f"{e}.axes", "the three axes must be mutually orthogonal")
+            v = v["fix"]
+            e = f"{e}.fix"
+        comps = SUPPORT_SHORTHANDS.get(v) if isinstance(v, str) else r.listing(v, e, 1)
+        if comps is None:
+            r.fail(e, f"{v!r} is not a list of components ({', '.join(SUPPORT_COMPONENTS)}), "
+                   "'pinned' or 'fixed'")
+        for k, comp in enumerate(comps):
+            if comp not in SUPPORT_COMPONENTS or list(comps).count(comp) > 1:
+                r.fail(f"{e}[{k}]", f"{comp!r}: use each of {', '.join(SUPPORT_COMPONENTS)} "
+                       "at most once")
+        idx = [SUPPORT_COMPONENTS.index(k) for k in comps]
+        out.append(Support(i, axes[[k for k in idx if k < 3]],
+                           axes[[k - 3 for k in idx if k >= 3]], f"supports.{n}"))
+    return tuple(out)

@@ -133,6 +133,16 @@ class LinearDrive:
 
 
 @dataclass(frozen=True)
+class Support:
+    """Restrained directions of a node (model-format.md, "supports")."""
+
+    node: int
+    translations: np.ndarray  # (k, 3) unit directions whose displacement is zero
+    rotations: np.ndarray     # (k, 3) unit axes whose rotation is zero
+    entry: str                # "supports.A" for messages
+
+
+@dataclass(frozen=True)
 class PointMasses:
     nodes: np.ndarray        # (k,)
     mass: np.ndarray         # (k,)
@@ -159,6 +169,7 @@ class Model:
     linear_drives: tuple
     effects: Effects
     analysis: dict = field(default_factory=dict)   # from a scene; {} for a model
+    supports: tuple = ()                            # Support per supported node
     scene: str = None                               # scene name, if loaded from one
     scene_file: str = None                          # and its path
 
