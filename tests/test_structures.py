@@ -310,3 +310,82 @@ def test_bad_supports_name_the_entry(model_from, entry, message):
     with pytest.raises(ModelError, match=message) as info:
         model_from(text)
     assert "supports." in str(info.value)
+
+
+# ------------------------------------------------------------------ member-end releases
+
+def test_release_condenses_to_the_pinned_fixed_element():
+    # one element released in rz at its second end: the x-y bending block is the classic
+    # fixed-pinned element 3EI/l^3 [[1, l, -1, 0], [l, l^2, -l, 0], [-1, -l, 1, 0], 0]
+    from cranefe.elements import release_transforms, transform
+    E, I, l = 2.0e11, 3.0e-4, 2.5
+    k = beam_stiffness(*(np.array([x]) for x in (E, 8e10, 0.01, I, I, 1e-4, l)))
+    released = np.zeros((1, 12), dtype=bool)
+    released[0, 11] = True
+    ks = transform(k, release_transforms(k, released))[0]
+    xy = [1, 5, 7, 11]
+    ref = 3 * E * I / l**3 * np.array([[1, l, -1, 0], [l, l**2, -l, 0], [-1, -l, 1, 0],
+                                       [0, 0, 0, 0]])
+    assert ks[np.ix_(xy, xy)] == pytest.approx(ref, rel=1e-12, abs=1e-12 * ref.max())
+    # the x-z plane, axial and torsion blocks are untouched
+    rest = [0, 2, 3, 4, 6, 8, 9, 10]
+    assert np.allclose(ks[np.ix_(rest, rest)], k[0][np.ix_(rest, rest)], rtol=1e-13, atol=0)
+
+
+def _propped(model_from, how, N=8):
+    E, A, I, rho, L = 2.1e11, 1.0e-2, 2.0e-4, 7850.0, 10.0
+    ends = {"release": "ground: [O, T]",
+            "support": "ground: [O]\n    supports: {T: pinned}"}[how]
+    rel = ", releases: {T: [ry]}" if how == "release" else ""
+    text = f"""
+    cranefe: 1
+    plane: xz
+    gravity: [0, 0, 0]
+    nodes: {{O: [0, 0, 0], T: [{L}, 0, 0]}}
+    {ends}
+    members:
+      b: {{type: beam, nodes: [O, T], E: {E}, A: {A}, Iy: {I}, rho: {rho}, elements: {N}{rel}}}
+    effects: {{structure: flexible}}
+    """
+    return _run(model_from, text, f"{how}{N}.yaml").omega
+
+
+def test_propped_cantilever_by_a_released_end_is_the_closed_form(model_from):
+    # clamped at O, pinned at T: beta L = 3.9266, 7.0686 (tan bL = tanh bL). The end
+    # element, released at T, is the condensed (fixed-pinned) element with the mass of the
+    # same displacement field: not the same mesh as a pinned node with its own rotation,
+    # but converging to the same beam at O(h^4), from above
+    import scipy.optimize as so
+    E, A, I, rho, L = 2.1e11, 1.0e-2, 2.0e-4, 7850.0, 10.0
+    bl = np.array([so.brentq(lambda b: np.tan(b) - np.tanh(b), k * np.pi + 0.1,
+                             k * np.pi + 1.5, xtol=1e-15) for k in (1, 2)])
+    exact = bl**2 / L**2 * np.sqrt(E * I / (rho * A))
+    Ns = [2, 4, 8, 16]
+    err = np.array([_propped(model_from, "release", N)[:2] / exact - 1 for N in Ns])
+    assert np.all(err > 0)
+    slope = -np.polyfit(np.log(Ns[1:]), np.log(err[1:, 1]), 1)[0]
+    assert slope == pytest.approx(4.0, abs=0.15)
+    assert err[-1, 0] < 5e-6
+    # the pinned support with the node's rotation free: the same beam, a finer mesh error
+    sup = _propped(model_from, "support", 16)[:2] / exact - 1
+    assert np.all(sup > 0) and np.all(sup < 3e-5)
+
+
+@pytest.mark.parametrize("rel, message", [
+    ("{X: [ry]}", "not a node of this member"),
+    ("{T: [rq]}", "at most once"),
+    ("{O: [rx], T: [rx]}", "free to twist"),
+])
+def test_bad_releases_name_the_entry(model_from, rel, message):
+    from cranefe.errors import ModelError
+    text = f"""
+    cranefe: 1
+    nodes: {{O: [0, 0, 0], T: [10, 0, 0], X: [5, 5, 0]}}
+    ground: [O]
+    members:
+      b: {{type: beam, nodes: [O, T], E: 2e11, G: 8e10, A: 0.01, Iy: 2e-4, Iz: 2e-4,
+          J: 1e-4, orientation: [0, 0, 1], releases: {rel}}}
+    """
+    with pytest.raises(ModelError, match=message) as info:
+        model_from(text)
+    assert "members.b.releases" in str(info.value)

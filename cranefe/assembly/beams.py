@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from ..elements import beam_axes, beam_stiffness, to_global
+from ..elements import beam_axes, beam_stiffness, release_transforms, to_global, transform
 from .coo import Blocks
 from .materials import element_sections, shear_parameters
 from .springs import member_geometry
@@ -14,12 +14,45 @@ def beam_dofs(layout, mm, which):
                       np.arange(6)]) if len(which) else np.zeros((0, 12), dtype=int)
 
 
+def _local_stiffness(sec, b, l):
+    return beam_stiffness(sec.E[b], sec.G[b], sec.A[b], sec.Iy[b], sec.Iz[b], sec.J[b], l,
+                          *shear_parameters(sec, b, l))
+
+
+def release_mask(model, mm, b):
+    """(len(b), 12) bool: the local end rotations of beam elements b that their member
+    releases (`releases: {NODE: [rx, ry, rz]}` at the elements' ends at NODE)."""
+    mask = np.zeros((len(b), 12), dtype=bool)
+    for mi, mem in enumerate(model.members):
+        for node, comps in mem.releases:
+            for j in (0, 1):
+                hit = (mm.member[b] == mi) & (mm.node[b, j] == node)
+                mask[np.ix_(hit, 6 * j + 3 + np.asarray(comps, dtype=int))] = True
+    return mask
+
+
+def end_releases(model, layout, mm, b, sec=None, l=None):
+    """T (len(b), 12, 12) condensing the released end rotations of beam elements b
+    (`release_transforms`), or None when no member releases any."""
+    if not any(m.releases for m in model.members):
+        return None
+    sec = element_sections(model, mm) if sec is None else sec
+    if l is None:
+        _, l = member_geometry(model, layout, mm, b)
+    return release_transforms(_local_stiffness(sec, b, l), release_mask(model, mm, b))
+
+
+def local_released(x, T):
+    """x with the end releases T applied (unchanged without releases)."""
+    return x if T is None else transform(x, T)
+
+
 def beam_blocks(model, layout, mm):
     """Elastic stiffness of the beam elements in global axes, and their absorption."""
     sec = element_sections(model, mm)
     b = np.flatnonzero(mm.beam)
     e, l = member_geometry(model, layout, mm, b)
     axes = beam_axes(e, mm.orientation[b])
-    k = beam_stiffness(sec.E[b], sec.G[b], sec.A[b], sec.Iy[b], sec.Iz[b], sec.J[b], l,
-                       *shear_parameters(sec, b, l))
-    return Blocks(beam_dofs(layout, mm, b), to_global(k, axes)), sec.psi[b]
+    k = _local_stiffness(sec, b, l)
+    T = end_releases(model, layout, mm, b, sec, l)
+    return Blocks(beam_dofs(layout, mm, b), to_global(local_released(k, T), axes)), sec.psi[b]

@@ -9,7 +9,7 @@ from ..coordinates.members import member_pairs
 from ..coordinates.ropes import endpoint_maps
 from ..errors import ModelError
 from ..model import GROUND
-from .beams import beam_dofs
+from .beams import beam_dofs, end_releases, local_released
 from .coo import Triplets
 from .materials import element_materials, element_sections, shear_parameters
 from .springs import member_geometry
@@ -127,6 +127,7 @@ def _beams(model, dofs, sec, b, t, f):
                   beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l, lumped=True),
                   beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l, False,
                             *shear_parameters(sec, b, l), rotary=sec.timoshenko[b]))
+    mb = local_released(mb, end_releases(model, layout, mm, b, sec, l))
     mg = to_global(mb, axes)
     idx = beam_dofs(layout, mm, b)
     t.add_blocks(idx, mg)

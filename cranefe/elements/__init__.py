@@ -8,13 +8,13 @@ element arrays. Nothing here sees a `Model`, a DOF map or a global index: assemb
 - `beams`: 3D Euler-Bernoulli and Timoshenko beams (elastic, mass and geometric stiffness, rotations).
 """
 
-from .beams import (beam_axes, beam_geometric, beam_mass, beam_stiffness, shear_factors,
-                    to_global)
+from .beams import (beam_axes, beam_geometric, beam_mass, beam_stiffness, release_transforms,
+                    shear_factors, to_global, transform)
 from .bodies import load_stiffness, rigid_mass, skew
 from .ropes import (RopeForce, elongation_rows, rope_force, rope_mass, span_geometry,
                     string_stiffness)
 
 __all__ = ["beam_axes", "beam_geometric", "beam_mass", "beam_stiffness", "shear_factors",
-           "to_global",
+           "to_global", "release_transforms", "transform",
            "load_stiffness", "rigid_mass", "skew", "elongation_rows", "rope_mass",
            "span_geometry", "string_stiffness", "rope_force", "RopeForce"]

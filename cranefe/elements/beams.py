@@ -150,3 +150,36 @@ def to_global(local, axes):
     for b in range(4):
         T[:, 3 * b:3 * b + 3, 3 * b:3 * b + 3] = axes
     return np.einsum("kji,kjl,klm->kim", T, local, T)
+
+
+def release_transforms(k, released):
+    """Static condensation of released end dofs (a pinned end of a beam), batched.
+
+    k : (ne, 12, 12) local stiffness; released : (ne, 12) bool, the dofs whose end force
+    is zero. Returns T (ne, 12, 12) with u = T u: the released dofs follow the others,
+    u_c = -k_cc^-1 k_cr u_r, and T's columns of released dofs are zero, so that
+    T^T k T = k_rr - k_rc k_cc^-1 k_cr (the condensed stiffness, e.g. Przemieniecki
+    section 6.6 / McGuire, Gallagher & Ziemian, Matrix Structural Analysis, eq. 7.2) and
+    T^T m T, T^T k_g T are the mass and geometric stiffness of the same displacement
+    field. Elements without releases get the identity.
+    """
+    ne = len(k)
+    T = np.broadcast_to(np.eye(12), (ne, 12, 12)).copy()
+    patterns, which = np.unique(released, axis=0, return_inverse=True)
+    for p, mask in enumerate(patterns):
+        if not mask.any():
+            continue
+        sel = np.flatnonzero(which.ravel() == p)
+        c, r = np.flatnonzero(mask), np.flatnonzero(~mask)
+        kcc = k[sel][:, c][:, :, c]
+        kcr = k[sel][:, c][:, :, r]
+        Tp = np.zeros((len(sel), 12, 12))
+        Tp[:, r, r] = 1.0
+        Tp[:, c[:, None], r[None, :]] = -np.linalg.solve(kcc, kcr)
+        T[sel] = Tp
+    return T
+
+
+def transform(local, T):
+    """T^T x T, batched (ne, 12, 12)."""
+    return np.einsum("kji,kjl,klm->kim", T, local, T)

@@ -761,7 +761,7 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
     e = f"members.{name}"
     r.keys(m, e, {"type", "nodes", "pairs", "mesh", "E", "G", "A", "Iy", "Iz", "J", "rho",
                   "orientation", "elements", "mass", "psi", "Asy", "Asz",
-                  "shear_coefficient"}, required=("type", "E", "A"))
+                  "shear_coefficient", "releases"}, required=("type", "E", "A"))
     given = [k for k in ("nodes", "pairs", "mesh") if k in m]
     if len(given) != 1:
         r.fail(e, "give exactly one of 'nodes' (a chain), 'pairs' (a list of [A, B]) or "
@@ -812,8 +812,10 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
         elif not planar:
             r.fail(e, "a 3D beam needs 'orientation' (a vector in its local x-z plane)")
         kw.update(_shear_areas(m, e, r, planar))
+        kw.update(_releases(m, e, r, node, chain, pairs, planar))
     else:
-        for k in ("G", "Iy", "Iz", "J", "orientation", "Asy", "Asz", "shear_coefficient"):
+        for k in ("G", "Iy", "Iz", "J", "orientation", "Asy", "Asz", "shear_coefficient",
+                  "releases"):
             if k in m:
                 r.fail(f"{e}.{k}", "a truss has only axial stiffness; remove it")
     elements = r.integer(m.get("elements", 1), f"{e}.elements", minimum=1)
@@ -896,3 +898,33 @@ def _supports(data, c, ground):
         out.append(Support(i, axes[[k for k in idx if k < 3]],
                            axes[[k - 3 for k in idx if k >= 3]], f"supports.{n}"))
     return tuple(out)
+
+
+RELEASE_COMPONENTS = ("rx", "ry", "rz")
+
+
+def _releases(m, e, r, node, chain, pairs, planar):
+    """Member-end releases `{NODE: [rx, ry, rz]}` (local rotations set free at the
+    member's element ends at NODE) -> {"releases": ((node, (0..2, ...)), ...)} or {}."""
+    if "releases" not in m:
+        return {}
+    pieces = np.asarray(pairs, dtype=int).reshape(-1, 2) if pairs is not None else \
+        np.stack([chain[:-1], chain[1:]], axis=1)
+    out = {}
+    for n, comps in r.mapping(m["releases"], f"{e}.releases").items():
+        entry = f"{e}.releases.{n}"
+        i = node(n, entry)
+        if i not in pieces:
+            r.fail(entry, f"node '{n}' is not a node of this member")
+        comps = [comps] if isinstance(comps, str) else r.listing(comps, entry, 1)
+        for k, comp in enumerate(comps):
+            if comp not in RELEASE_COMPONENTS or comps.count(comp) > 1 or \
+                    (planar and comp != "ry"):
+                allowed = "ry (in a plane: xz model)" if planar else "rx, ry, rz (local axes)"
+                r.fail(f"{entry}[{k}]", f"{comp!r}: release each of {allowed} at most once")
+        out[i] = tuple(sorted(RELEASE_COMPONENTS.index(c) for c in comps))
+    for a, b in pieces:
+        if 0 in out.get(a, ()) and 0 in out.get(b, ()):
+            r.fail(f"{e}.releases", "rx released at both ends of a piece leaves it free to "
+                   "twist; release it at one end")
+    return {"releases": tuple(out.items())}

@@ -116,6 +116,7 @@ class Member:
     pairs: np.ndarray = None     # (k, 2) separate two-node pieces (extension), else None
     Asy: float = 0.0             # shear areas (Timoshenko beam); 0: no shear deformation
     Asz: float = 0.0
+    releases: tuple = ()         # ((node, (local rotations 0=rx 1=ry 2=rz, ...)), ...)
 
     @property
     def timoshenko(self):
