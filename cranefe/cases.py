@@ -353,3 +353,27 @@ def nafems_fv2(elements=16, E=200.0e9, rho=8000.0, h=0.125, R=5.0, axial_factor=
     return text, {"omega": 2 * np.pi * f,
                   "published_hz": np.array([11.336] + [17.709] * 7 + [45.345] + [57.390] * 7),
                   "centre_translates": np.array([1, 2, 9, 10])}
+
+
+def self_weight_column(L=10.0, E=2.1e11, A=1.0e-2, rho=7850.0, elements=16,
+                       parameter=1.0):
+    """A vertical column clamped at its foot, free at its top, buckling under its own
+    weight q = rho A g per length (Greenhill 1881; Timoshenko & Gere, Theory of Elastic
+    Stability, section 2.13): (q L^3 / E I)_cr = (9/4) j^2 with j the first zero of
+    J_{-1/3}, 7.8373. I is chosen so that q L^3 / (E I) = `parameter`: the critical
+    factor on gravity is then 7.8373 / parameter."""
+    q = rho * A * G
+    I = q * L**3 / (E * parameter)
+    text = f"""cranefe: 1
+name: column under its own weight
+plane: xz
+nodes: {{O: [0, 0, 0], T: [0, 0, {L}]}}
+ground: [O]
+members:
+  col: {{type: beam, nodes: [O, T], E: {E!r}, A: {A!r}, Iy: {I!r}, rho: {rho!r},
+        elements: {elements}}}
+effects: {{structure: flexible}}
+"""
+    j = so.brentq(lambda x: ss.jv(-1 / 3, x), 1.0, 2.5, xtol=1e-15)
+    critical = 9 / 4 * j**2
+    return text, {"critical": critical, "factor": critical / parameter}

@@ -389,3 +389,52 @@ def test_bad_releases_name_the_entry(model_from, rel, message):
     with pytest.raises(ModelError, match=message) as info:
         model_from(text)
     assert "members.b.releases" in str(info.value)
+
+
+# ------------------------------------------------------------ buckling under self-weight
+
+def test_geometric_stiffness_of_a_linearly_varying_axial_force_is_its_integral():
+    from cranefe.elements import beam_geometric
+    N1, N2, l = -3.0e5, 1.0e5, 1.7
+    kg = beam_geometric(np.array([(N1 + N2) / 2]), np.array([l]), np.array([N2 - N1]))[0]
+    xg, wg = np.polynomial.legendre.leggauss(6)
+    ref = np.zeros((4, 4))
+    for xi, w in zip((xg + 1) / 2, wg / 2):
+        _, dv, _, _ = _timoshenko_shapes(xi, l, 0.0)       # phi = 0: Hermite cubics
+        ref += w * l * (N1 * (1 - xi) + N2 * xi) * np.outer(dv, dv)
+    xy = [1, 5, 7, 11]
+    assert kg[np.ix_(xy, xy)] == pytest.approx(ref, rel=1e-13, abs=1e-13 * abs(ref).max())
+
+
+def test_column_buckles_under_its_own_weight_at_greenhill(model_from):
+    # (q L^3 / EI)_cr = 7.8373 (first zero of J_-1/3); the static axial force varies
+    # linearly along every element (consistent self-weight), the cubic elements converge
+    # at O(h^4) from above: 8 elements give 1.3e-5
+    from cranefe.analysis.buckling import gravity_buckling
+    from cranefe.cases import self_weight_column
+    Ns = [2, 4, 8, 16]
+    err = []
+    for N in Ns:
+        text, exact = self_weight_column(elements=N)
+        err.append(gravity_buckling(model_from(text, f"sw{N}.yaml")).factor
+                   / exact["factor"] - 1)
+    err = np.array(err)
+    assert exact["critical"] == pytest.approx(7.837, abs=5e-4)
+    assert np.all(err > 0)
+    assert err[2] < 1e-4
+    slope = -np.polyfit(np.log(Ns[1:]), np.log(err[1:]), 1)[0]
+    assert slope == pytest.approx(4.0, abs=0.15)
+
+
+def test_modes_see_the_self_weight_buckling_load(model_from):
+    # the first frequency of the column at 0.99 and 0.999 of its critical weight (16
+    # elements, critical 8.4e-7 above Greenhill's): w^2 falls linearly to zero at the
+    # critical weight (to 9e-6 from the curvature of w^2 over that step)
+    from cranefe.cases import self_weight_column
+    crit = self_weight_column()[1]["critical"]
+    w2 = []
+    for f in (0.99, 0.999):
+        text, _ = self_weight_column(parameter=crit * f)
+        w2.append(_run(model_from, text, f"near{f}.yaml").omega[0] ** 2)
+    zero = 0.99 + 0.009 * w2[0] / (w2[0] - w2[1])
+    assert zero == pytest.approx(1.0, abs=3e-5)

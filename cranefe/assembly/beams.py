@@ -47,6 +47,17 @@ def local_released(x, T):
     return x if T is None else transform(x, T)
 
 
+def axial_variation(model, layout, mm, b):
+    """dN (len(b),): change of the static axial force along beam elements b from their
+    first end to their second, -p l with p = rho A g . e the axial part of their own
+    weight per length (consistent mass: a distributed load; lumped mass puts the weight
+    on the nodes, and N is constant), or None without gravity along any of them."""
+    sec = element_sections(model, mm)
+    e, l = member_geometry(model, layout, mm, b)
+    p = np.where(sec.lumped[b], 0.0, sec.rho[b] * sec.A[b]) * (e @ model.gravity)
+    return None if not p.any() else -p * l
+
+
 def beam_blocks(model, layout, mm):
     """Elastic stiffness of the beam elements in global axes, and their absorption."""
     sec = element_sections(model, mm)

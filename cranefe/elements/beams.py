@@ -131,14 +131,24 @@ def beam_mass(rho, A, Iy, Iz, l, lumped=False, phi_y=None, phi_z=None, rotary=No
     return out
 
 
-def beam_geometric(N, l):
+def beam_geometric(N, l, dN=None):
     """Local geometric stiffness of beams under axial force N (tension +), (ne, 12, 12):
-    the consistent cubic form N/(30 l) [[36, 3l, -36, 3l], ...] in each bending plane."""
+    int N(x) H'(x) H'(x)^T dx with the cubic (Hermite) shape functions H in each bending
+    plane. N: the mean axial force, giving N/(30 l) [[36, 3l, -36, 3l], ...]; dN (or
+    None): its change from the first end to the second when it varies linearly along the
+    element (an axial distributed load, e.g. the element's own weight), adding
+    dN/l [[0, l/20, 0, -l/20], [l/20, -l^2/30, -l/20, 0], [0, -l/20, 0, l/20],
+    [-l/20, 0, l/20, l^2/30]] (the integral with N(x) = N + dN (x/l - 1/2))."""
     ne = len(l)
     out = np.zeros((ne, 12, 12))
     c = N / (30 * l)
     b4 = _pattern4(36 * c, 3 * l * c, -36 * c, 3 * l * c, 4 * l**2 * c, -3 * l * c,
                    -l**2 * c, 36 * c, -3 * l * c, 4 * l**2 * c)
+    if dN is not None:
+        d = dN / l
+        z = np.zeros(ne)
+        b4 = b4 + _pattern4(z, l / 20 * d, z, -l / 20 * d, -l**2 / 30 * d, -l / 20 * d, z,
+                            z, l / 20 * d, l**2 / 30 * d)
     _bending([1, 5, 7, 11], b4, out, False)
     _bending([2, 4, 8, 10], b4, out, True)
     return out
