@@ -438,3 +438,98 @@ def test_modes_see_the_self_weight_buckling_load(model_from):
         w2.append(_run(model_from, text, f"near{f}.yaml").omega[0] ** 2)
     zero = 0.99 + 0.009 * w2[0] / (w2[0] - w2[1])
     assert zero == pytest.approx(1.0, abs=3e-5)
+
+
+# ----------------------------------------------------------------- sections from shapes
+
+def _polygon_moments(outline):
+    """A, Iy (about the centroidal axis parallel to the outline's first coordinate, i.e.
+    of the second coordinate z: int z^2) and Iz (int y^2) of a polygon (y, z) by Green's
+    theorem, independently of the section formulas."""
+    y, z = np.asarray(outline, float).T
+    y1, z1 = np.roll(y, -1), np.roll(z, -1)
+    c = y * z1 - y1 * z
+    A = c.sum() / 2
+    cy = ((y + y1) * c).sum() / (6 * A)
+    cz = ((z + z1) * c).sum() / (6 * A)
+    Iyy = ((z**2 + z * z1 + z1**2) * c).sum() / 12 - A * cz**2
+    Izz = ((y**2 + y * y1 + y1**2) * c).sum() / 12 - A * cy**2
+    return np.array([A, Iyy, Izz])
+
+
+def _i_outline(b, h, tw, tf, channel=False):
+    """Outline (y, z) counter-clockwise of an I (web centred) or a channel (web at y=0)."""
+    w0, w1 = (0.0, tw) if channel else ((b - tw) / 2, (b + tw) / 2)
+    return [(0, 0), (b, 0), (b, tf), (w1, tf), (w1, h - tf), (b, h - tf), (b, h), (0, h),
+            (0, h - tf), (w0, h - tf), (w0, tf), (0, tf)] if not channel else \
+        [(0, 0), (b, 0), (b, tf), (tw, tf), (tw, h - tf), (b, h - tf), (b, h), (0, h)]
+
+
+def test_section_areas_and_second_moments_are_those_of_their_outlines():
+    from cranefe.model.sections import section_properties
+    b, h, tw, tf, t = 0.15, 0.30, 0.0071, 0.0107, 0.008
+    cases = {
+        ("i", (b, h, tw, tf)): _polygon_moments(_i_outline(b, h, tw, tf)),
+        ("channel", (0.09, h, tw, tf)): _polygon_moments(_i_outline(0.09, h, tw, tf, True)),
+        ("box", (b, h, t)): _polygon_moments([(0, 0), (b, 0), (b, h), (0, h)])
+        - _polygon_moments([(t, t), (b - t, t), (b - t, h - t), (t, h - t)]),
+    }
+    for (shape, dims), ref in cases.items():
+        names = {"i": ("b", "h", "tw", "tf"), "channel": ("b", "h", "tw", "tf"),
+                 "box": ("b", "h", "t")}[shape]
+        got = section_properties(shape, dict(zip(names, dims)), 0.3)[:3]
+        assert got == pytest.approx(ref, rel=1e-12), shape
+
+
+def test_sections_against_handbook_values():
+    from cranefe.model.sections import section_properties
+    # EN 10210-2 CHS 168.3 x 10: A = 49.7 cm^2, I = 1564 cm^4, It = 3128 cm^4 (tables
+    # give 3-4 digits)
+    A, Iy, Iz, J, Asy, _ = section_properties("tube", {"D": 0.1683, "t": 0.010}, 0.3)
+    assert [A * 1e4, Iy * 1e8, Iz * 1e8, J * 1e8] == pytest.approx([49.7, 1564, 1564, 3128],
+                                                                   rel=1.5e-3)
+    # a thin tube's shear coefficient tends to Cowper's 2 (1 + nu) / (4 + 3 nu)
+    *_, As, _ = section_properties("tube", {"D": 1.0, "t": 1e-5}, 0.3)
+    assert As / (np.pi * 1e-5) == pytest.approx(2 * 1.3 / 4.9, rel=1e-4)
+    # solid rectangle a x c: J = beta a c^3 with beta = 0.141, 0.229, 0.312 for a/c = 1,
+    # 2, 10 (Timoshenko & Goodier, Theory of Elasticity, sec. 109, table; 3 digits)
+    for ratio, beta in ((1, 0.141), (2, 0.229), (10, 0.312)):
+        J = section_properties("rectangle", {"b": 1.0, "h": float(ratio)}, 0.3)[3]
+        assert J / ratio == pytest.approx(beta, abs=1e-3)
+    # a thin square box: Bredt's J = 4 A_m^2 t / s -> a^3 t for mid-line side a
+    J = section_properties("box", {"b": 1.0, "h": 1.0, "t": 1e-4}, 0.3)[3]
+    assert J == pytest.approx((1 - 1e-4) ** 3 * 1e-4, rel=1e-12)
+
+
+def test_a_member_section_is_its_properties(model_from):
+    # FV5 with its section given as a rectangle with timoshenko: true equals the member
+    # with Cowper's shear coefficient given by hand (the same numbers, to round-off)
+    text, exact = timoshenko_simply_supported(elements=8)
+    by_hand = _run(model_from, text, "hand.yaml").omega
+    import re
+    shaped = re.sub(r"A: [^,]+, Iy: [^,]+,", "section: {shape: rectangle, b: 2.0, h: 2.0, "
+                    "timoshenko: true},", text).replace(
+        f", shear_coefficient: {10 * 1.3 / (12 + 11 * 0.3)!r}", "")
+    assert "section" in shaped and "shear_coefficient" not in shaped
+    assert _run(model_from, shaped, "shaped.yaml").omega == pytest.approx(by_hand, rel=1e-12)
+
+
+@pytest.mark.parametrize("section, extra, message", [
+    ("{shape: tube, D: 0.2, t: 0.1}", "", "twice the thickness t"),
+    ("{shape: zed, b: 0.1}", "", "not one of"),
+    ("{shape: tube, D: 0.2}", "", "'t'"),
+    ("{shape: tube, D: 0.2, t: 0.01}", "A: 0.01, ", "not both"),
+])
+def test_bad_sections_name_the_entry(model_from, section, extra, message):
+    from cranefe.errors import ModelError
+    text = f"""
+    cranefe: 1
+    plane: xz
+    nodes: {{O: [0, 0, 0], T: [10, 0, 0]}}
+    ground: [O]
+    members:
+      b: {{type: beam, nodes: [O, T], E: 2e11, {extra}section: {section}}}
+    """
+    with pytest.raises(ModelError, match=message) as info:
+        model_from(text)
+    assert "members.b" in str(info.value)

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ModelError
+from .sections import SHAPES, section_properties
 from .model import (EFFECT_CHOICES, GROUND, Body, Drum, Effects, Joint, LinearDrive,
                     Member, Model, PointMasses, Rope, Spring, Support)
 from .yamlio import read_yaml
@@ -759,6 +760,7 @@ def _mesh_member(name, mesh, r, coords, node_names, names, planar):
 
 def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None):
     e = f"members.{name}"
+    m = _with_section(m, e, r)
     r.keys(m, e, {"type", "nodes", "pairs", "mesh", "E", "G", "A", "Iy", "Iz", "J", "rho",
                   "orientation", "elements", "mass", "psi", "Asy", "Asz",
                   "shear_coefficient", "releases"}, required=("type", "E", "A"))
@@ -928,3 +930,45 @@ def _releases(m, e, r, node, chain, pairs, planar):
             r.fail(f"{e}.releases", "rx released at both ends of a piece leaves it free to "
                    "twist; release it at one end")
     return {"releases": tuple(out.items())}
+
+
+SECTION_FILLS = ("A", "Iy", "Iz", "J")
+
+
+def _with_section(m, e, r):
+    """The member entry with `section: {shape, dimensions..., timoshenko}` replaced by
+    the A, Iy, Iz, J (and with timoshenko: true the shear areas) of that shape
+    (`cranefe.model.sections`); unchanged without a section."""
+    if not isinstance(m, dict) or "section" not in m:
+        return m
+    sec, es = r.mapping(m["section"], f"{e}.section"), f"{e}.section"
+    shape = sec.get("shape")
+    if shape not in SHAPES:
+        r.fail(f"{es}.shape", f"{shape!r} is not one of {', '.join(sorted(SHAPES))}")
+    dims = SHAPES[shape][0]
+    r.keys(sec, es, {"shape", "timoshenko", *dims}, required=("shape", *dims))
+    vals = {d: r.number(sec[d], f"{es}.{d}", positive=True) for d in dims}
+    thin = {"t": (2, ("D", "b", "h")), "tw": (1, ("b",)), "tf": (2, ("h",))}
+    for d, (n, outer) in thin.items():
+        for o in outer:
+            if d in vals and o in vals and n * vals[d] >= vals[o]:
+                r.fail(f"{es}.{d}", f"{'twice ' if n == 2 else ''}the thickness {d} must "
+                       f"be less than {o}")
+    both = [k for k in SECTION_FILLS if k in m]
+    if both:
+        r.fail(e, f"give the section or {', '.join(both)}, not both")
+    G = m.get("G")
+    nu = m["E"] / (2 * G) - 1 if isinstance(G, (int, float)) and G and \
+        isinstance(m.get("E"), (int, float)) else 0.3
+    A, Iy, Iz, J, Asy, Asz = section_properties(shape, vals, nu)
+    out = {k: v for k, v in m.items() if k != "section"}
+    out.update(A=A, Iy=Iy, Iz=Iz, J=J)
+    if m.get("type") == "truss":
+        for k in ("Iy", "Iz", "J"):
+            del out[k]
+    if r.boolean(sec.get("timoshenko", False), f"{es}.timoshenko"):
+        if any(k in m for k in ("Asy", "Asz", "shear_coefficient")):
+            r.fail(e, "timoshenko: true takes the shear areas from the section; remove "
+                   "Asy, Asz, shear_coefficient")
+        out.update(Asy=Asy, Asz=Asz)
+    return out
