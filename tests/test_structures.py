@@ -533,3 +533,48 @@ def test_bad_sections_name_the_entry(model_from, section, extra, message):
     with pytest.raises(ModelError, match=message) as info:
         model_from(text)
     assert "members.b" in str(info.value)
+
+
+# ------------------------------------------------------ member end forces in the static state
+
+@pytest.mark.parametrize("case", ["cantilever", "propped", "column"])
+def test_member_end_forces_under_self_weight_are_exact(tmp_path, capsys, case):
+    # cubic elements with consistent loads give the exact end forces of a uniformly
+    # loaded beam (q = rho A g): cantilever V = qL, M = qL^2/2 at the clamp; propped
+    # cantilever (a released end on the ground) M = qL^2/8 at the clamp, V = 5qL/8 and
+    # 3qL/8; a column N = -qL at its foot. Round-off only: 1e-9 of qL (of qL^2)
+    import json
+    import textwrap
+
+    from cranefe.cli import main
+    L, rho, A = 10.0, 7850.0, 0.01
+    q = rho * A * 9.81
+    geometry = {"cantilever": ("[10, 0, 0]", "ground: [O]", ""),
+                "propped": ("[10, 0, 0]", "ground: [O, T]", ", releases: {T: [ry]}"),
+                "column": ("[0, 0, 10]", "ground: [O]", "")}[case]
+    text = f"""
+    cranefe: 1
+    plane: xz
+    nodes: {{O: [0, 0, 0], T: {geometry[0]}}}
+    {geometry[1]}
+    members:
+      b: {{type: beam, nodes: [O, T], E: 2.1e11, A: {A}, Iy: 2.0e-4, rho: {rho},
+          elements: 4{geometry[2]}}}
+    effects: {{structure: flexible}}
+    """
+    path = tmp_path / f"{case}.yaml"
+    path.write_text(textwrap.dedent(text))
+    assert main(["check", str(path), "--json"]) == 0
+    (f,) = json.loads(capsys.readouterr().out)["member_forces"]
+    s, e = f["start"], f["end"]
+    assert (f["member"], f["from"], f["to"]) == ("b", "O", "T")
+    if case == "cantilever":
+        got = [s["Vz"], s["My"], e["Vz"], e["My"]]
+        ref = [-q * L, q * L**2 / 2, 0.0, 0.0]
+    elif case == "propped":
+        got = [s["Vz"], s["My"], e["Vz"], e["My"]]
+        ref = [-5 * q * L / 8, q * L**2 / 8, 3 * q * L / 8, 0.0]
+    else:
+        got = [s["N"], e["N"], s["My"], s["Vz"]]
+        ref = [-q * L, 0.0, 0.0, 0.0]
+    assert got == pytest.approx(ref, abs=1e-9 * q * L**2)

@@ -67,3 +67,19 @@ def beam_blocks(model, layout, mm):
     k = _local_stiffness(sec, b, l)
     T = end_releases(model, layout, mm, b, sec, l)
     return Blocks(beam_dofs(layout, mm, b), to_global(local_released(k, T), axes)), sec.psi[b]
+
+
+def beam_local_matrices(model, layout, mm, b):
+    """Local stiffness and mass (with the end releases) and local axes of beam elements
+    b: (k (nb, 12, 12), m (nb, 12, 12), axes (nb, 3, 3)), as assembled."""
+    from ..elements import beam_mass
+    sec = element_sections(model, mm)
+    e, l = member_geometry(model, layout, mm, b)
+    axes = beam_axes(e, mm.orientation[b])
+    phi = shear_parameters(sec, b, l)
+    m = np.where(sec.lumped[b][:, None, None],
+                 beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l, lumped=True),
+                 beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l, False, *phi,
+                           rotary=sec.timoshenko[b]))
+    T = end_releases(model, layout, mm, b, sec, l)
+    return local_released(_local_stiffness(sec, b, l), T), local_released(m, T), axes

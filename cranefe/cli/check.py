@@ -60,7 +60,7 @@ def run(args):
            "dofs": system.K.shape[0], "coordinates": list(system.dofs.labels),
            "quasi_cyclic": qc, "massless_condensed": massless,
            "constraints": [c.name for c in system.dofs.constraints],
-           "elements": elements, "warnings": warnings}
+           "elements": elements, "warnings": warnings, **_member_forces(model, system, static)}
     if args.json:
         print(dumps(doc))
         return 0
@@ -97,3 +97,12 @@ def _rotates(dofs, i):
     """Whether node i has rotations (beams meet there): a point mass's rotary inertia
     counts there."""
     return dofs.T[dofs.layout.rot(i)].nnz > 0
+
+
+def _member_forces(model, system, static):
+    """{"member_forces": [...]}: section forces at the ends of beam members in the
+    static state, when the structure is flexible and has beams ({} otherwise)."""
+    from ..outputs.member_forces import member_end_forces
+    mm = system.dofs.members
+    forces = member_end_forces(model, system.dofs.layout, mm, static.u) if mm else []
+    return {"member_forces": forces} if forces else {}
