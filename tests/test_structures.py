@@ -578,3 +578,33 @@ def test_member_end_forces_under_self_weight_are_exact(tmp_path, capsys, case):
         got = [s["N"], e["N"], s["My"], s["Vz"]]
         ref = [-q * L, 0.0, 0.0, 0.0]
     assert got == pytest.approx(ref, abs=1e-9 * q * L**2)
+
+
+def test_a_hinge_where_only_released_ends_meet(model_from):
+    # two beams clamped at O and T, both released at M: the node M gets no rotation
+    # (nothing would resist it). Symmetric modes: each half a cantilever of L/2
+    # (beta L = 1.8751, zero moment and shear at M); antisymmetric: clamped-pinned
+    # halves (beta L = 3.9266). 16 elements per half, O(h^4)
+    E, A, I, rho, h = 2.1e11, 1.0e-2, 2.0e-4, 7850.0, 5.0
+    text = f"""
+    cranefe: 1
+    plane: xz
+    gravity: [0, 0, 0]
+    nodes: {{O: [0, 0, 0], M: [{h}, 0, 0], T: [{2 * h}, 0, 0]}}
+    ground: [O, T]
+    members:
+      a: {{type: beam, nodes: [O, M], E: {E}, A: {A}, Iy: {I}, rho: {rho}, elements: 16,
+          releases: {{M: ry}}}}
+      b: {{type: beam, nodes: [M, T], E: {E}, A: {A}, Iy: {I}, rho: {rho}, elements: 16,
+          releases: {{M: [ry]}}}}
+    effects: {{structure: flexible}}
+    """
+    from cranefe.coordinates import build_dofs
+    model = model_from(text)
+    labels = build_dofs(model).labels
+    assert "node M ry" not in labels and "node M x" in labels
+    r = modes(model)
+    bl = np.array([1.875104068711961, 3.926602312047919])
+    exact = bl**2 / h**2 * np.sqrt(E * I / (rho * A))
+    # measured +1e-8 and +2.5e-6 (as the propped cantilever above at 16 elements)
+    assert r.omega[:2] == pytest.approx(exact, rel=3e-6)
