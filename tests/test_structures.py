@@ -608,3 +608,43 @@ def test_a_hinge_where_only_released_ends_meet(model_from):
     exact = bl**2 / h**2 * np.sqrt(E * I / (rho * A))
     # measured +1e-8 and +2.5e-6 (as the propped cantilever above at 16 elements)
     assert r.omega[:2] == pytest.approx(exact, rel=3e-6)
+
+
+def test_mesh_members_take_sections_and_their_points_take_supports(model_from, tmp_path):
+    # a simply supported tube as a mesh file of 16 line cells: its far end is the mesh's
+    # own point 'beam.16', pinned by name; the same beam written as a chain of named
+    # nodes gives the same frequencies
+    meshio = pytest.importorskip("meshio")
+    L, n = 10.0, 16
+    pts = np.column_stack([np.linspace(0, L, n + 1), np.zeros(n + 1), np.zeros(n + 1)])
+    cells = [("line", np.column_stack([np.arange(n), np.arange(1, n + 1)]))]
+    meshio.write(tmp_path / "beam.vtu", meshio.Mesh(pts, cells))
+    body = """E: 2.1e11, G: 8.1e10, rho: 7850, orientation: [0, 0, 1],
+          section: {shape: tube, D: 0.1683, t: 0.01}}"""
+    mesh = f"""
+    cranefe: 1
+    gravity: [0, 0, 0]
+    nodes: {{A: [0, 0, 0]}}
+    supports: {{A: [ux, uy, uz, rx], beam.16: [uy, uz]}}
+    members:
+      beam: {{type: beam, mesh: beam.vtu, {body}
+    effects: {{structure: flexible}}
+    """
+    names = ", ".join(f"N{k}: [{float(x)!r}, 0, 0]" for k, x in enumerate(pts[:, 0]))
+    chain = f"""
+    cranefe: 1
+    gravity: [0, 0, 0]
+    nodes: {{{names}}}
+    supports: {{N0: [ux, uy, uz, rx], N16: [uy, uz]}}
+    members:
+      beam: {{type: beam, nodes: [{", ".join(f"N{k}" for k in range(n + 1))}], {body}
+    effects: {{structure: flexible}}
+    """
+    w_mesh = _run(model_from, mesh, "mesh.yaml").omega
+    w_chain = _run(model_from, chain, "chain.yaml").omega
+    assert w_mesh[:6] == pytest.approx(w_chain[:6], rel=1e-10)
+    # pinned-pinned: w1 = (pi / L)^2 sqrt(E I / rho A) with the tube's I and A
+    from cranefe.model.sections import section_properties
+    A, I = section_properties("tube", {"D": 0.1683, "t": 0.01}, 0.3)[:2]
+    w1 = (np.pi / L) ** 2 * np.sqrt(2.1e11 * I / (7850 * A))
+    assert np.sum(np.abs(w_mesh / w1 - 1) < 1e-5) == 2          # both planes, 16 elements
