@@ -229,3 +229,151 @@ def hoist_slack(hook_speed=0.9, falls=2, J=500.0, R=0.25, m=5000.0, EA=2.0e7):
     return text, {"S0": S0, "omega": w, "drum_speed": -hook_speed * falls / R,
                   "slack_time": ts, "taut_time": ts + 2 * hook_speed * np.cos(w * ts) / G,
                   "peak": S0 * (1 + hook_speed * w / G)}
+
+
+# ---------------------------------------------------------------- structures
+
+def timoshenko_simply_supported(L=10.0, h=2.0, E=200.0e9, nu=0.3, rho=8000.0, kappa=None,
+                                elements=16, modes=3, shear=True):
+    """A simply supported Timoshenko beam of square section h x h, planar, flexural modes.
+
+    v = V sin(a x), psi = P cos(a x), a = n pi / L, solve the Timoshenko equations
+    k G A (v'' - psi') = rho A v_tt, E I psi'' + k G A (v' - psi) = rho I psi_tt exactly
+    with pinned ends (Han, Benaroya & Wei, J. Sound Vib. 225 (1999) 935, the
+    simply supported case): their determinant is
+    rho^2 I / (k G) w^4 - (rho A + rho I a^2 + E I rho a^2 / (k G)) w^2 + E I a^4 = 0,
+    whose lower root is the flexural mode (the upper one the shear spectrum). kappa defaults to Cowper's 10 (1 + nu) / (12 + 11 nu) for a
+    rectangle. This is the NAFEMS FV5 deep beam (L = 10 m, h = 2 m; published
+    42.65, 148.15 Hz), whose Euler-Bernoulli frequencies are (n pi / L)^2 sqrt(EI / rho A).
+    The pins are massless bodies hinged to the ground at the ends.
+    """
+    kappa = 10 * (1 + nu) / (12 + 11 * nu) if kappa is None else kappa
+    G_ = E / (2 * (1 + nu))
+    A, I = h * h, h**4 / 12
+    shear_key = f", shear_coefficient: {kappa!r}" if shear else ""
+    text = f"""cranefe: 1
+name: simply supported deep beam
+plane: xz
+gravity: [0, 0, 0]
+nodes: {{A: [0, 0, 0], B: [{L}, 0, 0]}}
+bodies:
+  pin_a: {{mass: 0, nodes: [A]}}
+  pin_b: {{mass: 0, nodes: [B]}}
+joints:
+  - {{type: hinge, bodies: [ground, pin_a], at: A, axis: [0, 1, 0]}}
+  - {{type: hinge, bodies: [ground, pin_b], at: B, axis: [0, 1, 0]}}
+members:
+  beam: {{type: beam, nodes: [A, B], E: {E!r}, G: {G_!r}, A: {A!r}, Iy: {I!r},
+         rho: {rho!r}, elements: {elements}{shear_key}}}
+effects: {{structure: flexible}}
+"""
+    a = np.arange(1, modes + 1) * np.pi / L
+    c2 = rho**2 * I / (kappa * G_)
+    c1 = rho * A + rho * I * a**2 + E * I * rho * a**2 / (kappa * G_)
+    c0 = E * I * a**4
+    w2 = 2 * c0 / (c1 + np.sqrt(c1**2 - 4 * c2 * c0))      # the lower root, no cancellation
+    return text, {"omega": np.sqrt(w2), "omega_euler_bernoulli": a**2 * np.sqrt(E * I / (rho * A)),
+                  "published_hz": np.array([42.65, 148.15])}
+
+
+def cantilever_tip_mass(L=10.0, E=2.1e11, A=1.0e-2, I=2.0e-4, rho=7850.0, M=1000.0,
+                        J=2.0e4, elements=16, modes=3):
+    """A planar Euler-Bernoulli cantilever with a tip mass M and rotary inertia J.
+
+    v = a cosh bx + b sinh bx + c cos bx + d sin bx, b^4 = rho A w^2 / (E I), with
+    v(0) = v'(0) = 0 and, from the variation of the kinetic energy of the tip,
+    E I v''(L) - J w^2 v'(L) = 0 and E I v'''(L) + M w^2 v(L) = 0 (e.g. Blevins, Formulas
+    for Natural Frequency and Mode Shape, table 8-8, with J). The frequencies are the
+    zeros of the 2 x 2 determinant left after the clamped end, found by bracketing and
+    Brent's method to 1e-15.
+    """
+    text = f"""cranefe: 1
+name: cantilever with a tip mass and rotary inertia
+plane: xz
+gravity: [0, 0, 0]
+nodes: {{O: [0, 0, 0], T: [{L}, 0, 0]}}
+ground: [O]
+masses: {{T: {{mass: {M!r}, inertia: {J!r}}}}}
+members:
+  beam: {{type: beam, nodes: [O, T], E: {E!r}, A: {A!r}, Iy: {I!r}, rho: {rho!r},
+         elements: {elements}}}
+effects: {{structure: flexible}}
+"""
+    EI, m = E * I, rho * A
+
+    def det(beta):
+        w2 = EI * beta**4 / m
+        bl = beta * L
+        ch, sh, c, s = np.cosh(bl), np.sinh(bl), np.cos(bl), np.sin(bl)
+        # v = a (cosh - cos) + b (sinh - sin) satisfies the clamped end
+        d2 = beta**2 * np.array([ch + c, sh + s])
+        d1 = beta * np.array([sh + s, ch - c])
+        d3 = beta**3 * np.array([sh - s, ch + c])
+        d0 = np.array([ch - c, sh - s])
+        r1 = EI * d2 - J * w2 * d1
+        r2 = EI * d3 + M * w2 * d0
+        return (r1[0] * r2[1] - r1[1] * r2[0]) / np.cosh(bl) ** 2 / (EI**2 * beta**5)
+
+    grid = np.linspace(1e-3, (modes + 1.5) * np.pi, 4000) / L
+    vals = np.array([det(b) for b in grid])
+    roots = [so.brentq(det, grid[k], grid[k + 1], xtol=1e-15 / L)
+             for k in np.flatnonzero(np.sign(vals[:-1]) != np.sign(vals[1:]))][:modes]
+    beta = np.array(roots)
+    return text, {"omega": beta**2 * np.sqrt(EI / m)}
+
+
+def nafems_fv2(elements=16, E=200.0e9, rho=8000.0, h=0.125, R=5.0, axial_factor=1.0):
+    """NAFEMS FV2, the pin-ended double cross, in-plane vibration (here in the x-z plane):
+    eight arms of square section h x h from the centre C to pinned ends at radius R, 45
+    degrees apart, written with `supports: {Pk: pinned}`.
+
+    The published family (11.336; 17.709 x 7; 45.345; 57.390 x 7 Hz) is that of arms with
+    the centre fixed in translation: pinned-pinned arms (beta L = pi, 2 pi) when the
+    centre turns, clamped-pinned (beta L = 3.9266, 7.0686, from tan bL = tanh bL) when
+    it does not; f = (beta L)^2 / (2 pi R^2) sqrt(E I / (rho A)). Axially flexible arms
+    let the centre translate in two of the clamped-pinned modes of each family, which
+    moves the arms' axial inertia and lowers those pairs; `axial_factor` multiplies A and
+    divides rho (rho A and E I unchanged) to stiffen the arms axially.
+    """
+    ang = np.arange(8) * np.pi / 4
+    nodes = ", ".join(f"P{k}: [{float(R * np.cos(a))!r}, 0, {float(R * np.sin(a))!r}]"
+                      for k, a in enumerate(ang))
+    A, I = h * h, h**4 / 12
+    arms = "\n".join(f"  arm{k}: {{type: beam, nodes: [C, P{k}], E: {E!r}, "
+                     f"A: {A * axial_factor!r}, Iy: {I!r}, rho: {rho / axial_factor!r}, "
+                     f"elements: {elements}}}" for k in range(8))
+    text = (f"cranefe: 1\nname: NAFEMS FV2 pin-ended double cross\nplane: xz\n"
+            f"gravity: [0, 0, 0]\nnodes: {{C: [0, 0, 0], {nodes}}}\n"
+            "supports: {" + ", ".join(f"P{k}: pinned" for k in range(8)) + "}\n"
+            f"members:\n{arms}\neffects: {{structure: flexible}}\n")
+    bl_cp = [so.brentq(lambda b: np.tan(b) - np.tanh(b), k * np.pi + 0.1, k * np.pi + 1.5,
+                       xtol=1e-15) for k in (1, 2)]
+    bl = np.array([np.pi] + [bl_cp[0]] * 7 + [2 * np.pi] + [bl_cp[1]] * 7)
+    f = bl**2 / (2 * np.pi * R**2) * np.sqrt(E * I / (rho * A))
+    return text, {"omega": 2 * np.pi * f,
+                  "published_hz": np.array([11.336] + [17.709] * 7 + [45.345] + [57.390] * 7),
+                  "centre_translates": np.array([1, 2, 9, 10])}
+
+
+def self_weight_column(L=10.0, E=2.1e11, A=1.0e-2, rho=7850.0, elements=16,
+                       parameter=1.0):
+    """A vertical column clamped at its foot, free at its top, buckling under its own
+    weight q = rho A g per length (Greenhill 1881; Timoshenko & Gere, Theory of Elastic
+    Stability, section 2.13): (q L^3 / E I)_cr = (9/4) j^2 with j the first zero of
+    J_{-1/3}, 7.8373. I is chosen so that q L^3 / (E I) = `parameter`: the critical
+    factor on gravity is then 7.8373 / parameter."""
+    q = rho * A * G
+    I = q * L**3 / (E * parameter)
+    text = f"""cranefe: 1
+name: column under its own weight
+plane: xz
+nodes: {{O: [0, 0, 0], T: [0, 0, {L}]}}
+ground: [O]
+members:
+  col: {{type: beam, nodes: [O, T], E: {E!r}, A: {A!r}, Iy: {I!r}, rho: {rho!r},
+        elements: {elements}}}
+effects: {{structure: flexible}}
+"""
+    j = so.brentq(lambda x: ss.jv(-1 / 3, x), 1.0, 2.5, xtol=1e-15)
+    critical = 9 / 4 * j**2
+    return text, {"critical": critical, "factor": critical / parameter}

@@ -148,6 +148,8 @@ def solve_static(model, effects=None, reuse=None):
                 drive_force[i] = -lc[0]            # pushes C away from A: compression
                 node_force[cc] += lc[0] * e[0]
                 node_force[a] -= lc[0] * e[0]
+            elif kind == "support":                # the reaction on the node
+                node_force[model.supports[i].node] += c.directions.T @ lc
     scale = _force_scale(f_u, u, springs, element_force, beams, layout.size)[tr]
     _check_free_nodes(model, dofs, node_force, f_u[tr].reshape(nn, 3),
                       scale.reshape(nn, 3), _kinds_at(springs, beams, layout))

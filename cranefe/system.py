@@ -14,7 +14,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .assembly import Blocks, elastic_stiffness, mass_and_gravity, pattern, sum_blocks
-from .assembly.beams import beam_dofs
+from .assembly.beams import axial_variation, beam_dofs, end_releases, local_released
 from .assembly.springs import SpringRows
 from .coordinates import build_dofs
 from .elements import (beam_axes, beam_geometric, load_stiffness, span_geometry,
@@ -60,9 +60,11 @@ def geometric_stiffness(dofs, static):
     if mm is not None and mm.beam.any():
         bi = np.flatnonzero(mm.beam)
         e, l = span_geometry(dofs.coords, mm.node[bi, 0], mm.node[bi, 1])
+        dN = axial_variation(static.model, layout, mm, bi)
+        kg = local_released(beam_geometric(static.beam_force, l, dN),
+                            end_releases(static.model, layout, mm, bi))
         out.append(Blocks(beam_dofs(layout, mm, bi),
-                          to_global(beam_geometric(static.beam_force, l),
-                                    beam_axes(e, mm.orientation[bi]))))
+                          to_global(kg, beam_axes(e, mm.orientation[bi]))))
     first_body = {}
     for b, g in enumerate(dofs.group_of_body):
         first_body.setdefault(g, b)

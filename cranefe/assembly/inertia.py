@@ -9,9 +9,9 @@ from ..coordinates.members import member_pairs
 from ..coordinates.ropes import endpoint_maps
 from ..errors import ModelError
 from ..model import GROUND
-from .beams import beam_dofs
+from .beams import beam_dofs, end_releases, local_released
 from .coo import Triplets
-from .materials import element_materials, element_sections
+from .materials import element_materials, element_sections, shear_parameters
 from .springs import member_geometry
 
 
@@ -53,7 +53,9 @@ def _carriers_of(model, dofs, i):
 
 
 def _point_masses(model, dofs, bodies, t, f):
-    """A mass on a body adds to it exactly; a free node's mass is its own."""
+    """A mass on a body adds to it exactly; a free node's mass is its own, and its
+    rotary inertia goes to the node's rotations (which exist where beams meet; elsewhere
+    they have no coordinates and it drops out)."""
     layout = dofs.layout
     pm = model.masses
     for i, m, J in zip(pm.nodes, pm.mass, pm.inertia):
@@ -65,6 +67,8 @@ def _point_masses(model, dofs, bodies, t, f):
             idx = layout.node([i])
             t.add_blocks(idx, m * np.eye(3)[None])
             f[idx[0]] += m * model.gravity
+            if np.any(J):
+                t.add_blocks(layout.rot([i]), J[None])
 
 
 def _rigid_members(model, dofs, bodies):
@@ -121,7 +125,9 @@ def _beams(model, dofs, sec, b, t, f):
     axes = beam_axes(e, mm.orientation[b])
     mb = np.where(sec.lumped[b][:, None, None],
                   beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l, lumped=True),
-                  beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l))
+                  beam_mass(sec.rho[b], sec.A[b], sec.Iy[b], sec.Iz[b], l, False,
+                            *shear_parameters(sec, b, l), rotary=sec.timoshenko[b]))
+    mb = local_released(mb, end_releases(model, layout, mm, b, sec, l))
     mg = to_global(mb, axes)
     idx = beam_dofs(layout, mm, b)
     t.add_blocks(idx, mg)

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..elements import shear_factors
+
 
 def element_materials(model, rm):
     """(EA, mu), each (ne,), of the rope elements of the RopeMesh `rm`; the extra-length
@@ -30,6 +32,9 @@ class Sections:
     rho: np.ndarray
     psi: np.ndarray
     lumped: np.ndarray        # bool: lumped mass matrix
+    Asy: np.ndarray = None    # shear areas (0: no shear deformation)
+    Asz: np.ndarray = None
+    timoshenko: np.ndarray = None   # bool: shear deformation and rotary inertia
 
 
 def element_sections(model, mm):
@@ -37,4 +42,16 @@ def element_sections(model, mm):
     per = {k: np.array([float(getattr(m, k)) for m in model.members])
            for k in ("E", "G", "A", "Iy", "Iz", "J", "rho", "psi")}
     lumped = np.array([m.mass == "lumped" for m in model.members], dtype=bool)
-    return Sections(**{k: v[mm.member] for k, v in per.items()}, lumped=lumped[mm.member])
+    timo = np.array([m.timoshenko for m in model.members], dtype=bool)
+    shear = {k: np.array([float(getattr(m, k)) for m in model.members])[mm.member]
+             for k in ("Asy", "Asz")}
+    return Sections(**{k: v[mm.member] for k, v in per.items()}, lumped=lumped[mm.member],
+                    timoshenko=timo[mm.member], **shear)
+
+
+def shear_parameters(sec, b, l):
+    """(phi_y, phi_z) of beam elements b with lengths l, or (None, None) when none of
+    them is a Timoshenko beam (the Euler-Bernoulli kernels unchanged)."""
+    if not sec.timoshenko[b].any():
+        return None, None
+    return shear_factors(sec.E[b], sec.G[b], sec.Iy[b], sec.Iz[b], sec.Asy[b], sec.Asz[b], l)

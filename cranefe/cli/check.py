@@ -59,7 +59,7 @@ def run(args):
         c = condense(system)
         qc, massless = list(c.quasi_cyclic), list(c.massless)
     for i, m in zip(model.masses.nodes, model.masses.inertia):
-        if system.dofs.carrier[i] == -2 and np.any(m):
+        if system.dofs.carrier[i] == -2 and np.any(m) and not _rotates(system.dofs, i):
             warnings.append(f"rotary inertia of the point mass at free node "
                             f"'{model.node_names[i]}' is ignored (no rotation there)")
     doc = {"model": model.name, "file": model.file, "scene": model.scene,
@@ -67,7 +67,7 @@ def run(args):
            "dofs": system.K.shape[0], "coordinates": list(system.dofs.labels),
            "quasi_cyclic": qc, "massless_condensed": massless,
            "constraints": [c.name for c in system.dofs.constraints],
-           "elements": elements, "warnings": warnings}
+           "elements": elements, "warnings": warnings, **_member_forces(model, system, static)}
     if args.json:
         print(dumps(doc))
         return 0
@@ -119,3 +119,18 @@ def _designation(d):
             f"{d['mass_per_length_kg_m']:.4g} kg/m, minimum breaking force "
             f"{d['min_breaking_force_N'] / 1e3:.4g} kN (grade 1770)"
             + (f"; your own {' and '.join(own)} used" if own else ""))
+
+
+def _rotates(dofs, i):
+    """Whether node i has rotations (beams meet there): a point mass's rotary inertia
+    counts there."""
+    return dofs.T[dofs.layout.rot(i)].nnz > 0
+
+
+def _member_forces(model, system, static):
+    """{"member_forces": [...]}: section forces at the ends of beam members in the
+    static state, when the structure is flexible and has beams ({} otherwise)."""
+    from ..outputs.member_forces import member_end_forces
+    mm = system.dofs.members
+    forces = member_end_forces(model, system.dofs.layout, mm, static.u) if mm else []
+    return {"member_forces": forces} if forces else {}

@@ -18,7 +18,7 @@ class ConstraintRows:
     """Rows of G (in q_map) of one constraint, with how its reaction acts on points."""
 
     name: str
-    owner: tuple              # ("joint" | "drive" | "rope", index in the model)
+    owner: tuple              # ("joint" | "drive" | "rope" | "support", index in the model)
     rows: np.ndarray          # (k, n_map) dense
     groups: tuple             # (g1, g2) rigid groups a joint connects, else ()
     point: np.ndarray         # (3,) point where the reaction acts (joints), or None
@@ -70,6 +70,7 @@ def _constraint_rows(model, effects, layout, T_map, group_of_body, group_q, grou
         out.append(ConstraintRows(f"{j.type} joint at {model.node_names[j.at]}",
                                   ("joint", k), rows, (g1, g2), p, dirs))
 
+    out += _support_rows(model, layout, T_map)
     for k, d in enumerate(model.linear_drives):
         a, c = d.nodes
         e, _ = span_geometry(model.coords, np.array([a]), np.array([c]))
@@ -88,6 +89,21 @@ def _constraint_rows(model, effects, layout, T_map, group_of_body, group_q, grou
         for k, r in enumerate(model.ropes):
             out.append(ConstraintRows(f"rope {r.name} (inextensible)", ("rope", k),
                                       RT[k:k + 1], (), None, np.zeros((1, 3))))
+    return out
+
+
+def _support_rows(model, layout, T_map):
+    """Supports: the displacement of the node along each restrained direction d and its
+    rotation about each restrained axis, d . u = 0. A direction in which the node has no
+    coordinate (the plane's normal; a rotation where no beam meets) gives a zero row,
+    which the elimination drops."""
+    out = []
+    for k, s in enumerate(model.supports):
+        rows = np.vstack([s.translations @ T_map[layout.node(s.node)].toarray(),
+                          s.rotations @ T_map[layout.rot(s.node)].toarray()])
+        dirs = np.vstack([s.translations, np.zeros((len(s.rotations), 3))])
+        out.append(ConstraintRows(f"support at {model.node_names[s.node]}", ("support", k),
+                                  rows, (), model.coords[s.node], dirs))
     return out
 
 

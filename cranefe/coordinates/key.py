@@ -19,7 +19,8 @@ VALUE_ONLY = {
     "Spring": {"stiffness": None, "psi": None},
     "Drum": {"inertia": None, "rotor_inertia": None, "gear_ratio": None},
     "Rope": {"EA": None, "psi": None, "mass_per_length": lambda mu: mu > 0},
-    "Member": dict.fromkeys(("E", "G", "A", "Iy", "Iz", "J", "rho", "psi", "mass")),
+    "Member": dict.fromkeys(("E", "G", "A", "Iy", "Iz", "J", "rho", "psi", "mass", "Asy",
+                             "Asz")),
     "LinearDrive": {"pinion_radius": None, "gear_ratio": None, "rotor_inertia": None},
 }
 

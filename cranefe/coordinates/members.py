@@ -21,14 +21,19 @@ class MemberMesh:
     beam: np.ndarray          # bool: beam (else truss)
     node: np.ndarray          # (ne, 2) expanded node indices (offset applied by caller)
     orientation: np.ndarray   # (ne, 3)
+    pinned: np.ndarray = None  # (ne, 2) bool: end with every rotation released
 
     @property
     def n_interior(self):
         return len(self.coords)
 
     def rotation_nodes(self):
-        """Nodes (expanded indices) where beams meet: they carry rotations."""
-        return np.unique(self.node[self.beam].ravel())
+        """Nodes (expanded indices) where beams meet: they carry rotations, unless every
+        beam end there is pinned (its rotations released: they would have no stiffness)."""
+        ends = self.node[self.beam]
+        if self.pinned is not None:
+            ends = ends[~self.pinned[self.beam]]
+        return np.unique(ends.ravel())
 
 
 def discretize(model, first_node):
@@ -73,7 +78,19 @@ def discretize(model, first_node):
     cat["orientation"] = cat["orientation"].reshape(-1, 3)
     cat["member"] = cat["member"].astype(int)
     cat["beam"] = cat["beam"].astype(bool)
-    return MemberMesh(np.vstack(coords) if coords else np.zeros((0, 3)), tuple(names), **cat)
+    return MemberMesh(np.vstack(coords) if coords else np.zeros((0, 3)), tuple(names), **cat,
+                      pinned=_pinned_ends(model, cat["member"], cat["node"]))
+
+
+def _pinned_ends(model, member, node):
+    """(ne, 2) bool: element ends where their member releases every rotation (ry in a
+    plane), from the members' `releases`."""
+    pinned = np.zeros(node.shape, dtype=bool)
+    for mi, m in enumerate(model.members):
+        for i, comps in getattr(m, "releases", ()):
+            if set(comps) >= ({1} if model.planar else {0, 1, 2}):
+                pinned |= (member == mi)[:, None] & (node == i)
+    return pinned
 
 
 def member_pairs(member):

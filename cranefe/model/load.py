@@ -14,11 +14,12 @@ import numpy as np
 from ..errors import ModelError
 from . import ropes_data, units
 from ..outpaths import named_path, note_read
+from .sections import SHAPES, section_properties
 from .model import (EFFECT_CHOICES, GROUND, Body, Drum, Effects, Joint, LinearDrive,
-                    Member, Model, PointMasses, Rope, Spring)
+                    Member, Model, PointMasses, Rope, Spring, Support)
 from .yamlio import read_yaml
 
-MODEL_KEYS = {"cranefe", "name", "plane", "gravity", "nodes", "ground", "masses",
+MODEL_KEYS = {"cranefe", "name", "plane", "gravity", "nodes", "ground", "supports", "masses",
               "bodies", "joints", "springs", "drums", "ropes", "members",
               "linear_drives", "effects"}
 SCENE_KEYS = {"cranefe", "scene", "model", "effects", "analysis"}
@@ -649,6 +650,7 @@ def _build_model(data, file, text, r):
     c = _Ctx(r, _Names(r), planar)
     _nodes(data, c)
     ground = _ground(data, c)
+    supports = _supports(data, c, ground)
     masses = _masses(data, c)
     bodies, owner = _bodies(c)
     joints = _joints(data, c)
@@ -665,7 +667,7 @@ def _build_model(data, file, text, r):
         node_names=node_names, coords=coords, ground=np.array(ground, dtype=int),
         masses=masses, bodies=tuple(bodies), joints=tuple(joints), springs=tuple(springs),
         drums=tuple(drums), ropes=tuple(ropes), members=tuple(members),
-        linear_drives=tuple(linear), effects=effects)
+        linear_drives=tuple(linear), effects=effects, supports=supports)
 
 
 def _joint_range(j, e, r):
@@ -840,8 +842,10 @@ def _mesh_member(name, mesh, r, coords, node_names, names, planar):
 
 def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None):
     e = f"members.{name}"
+    m = _with_section(m, e, r)
     r.keys(m, e, {"type", "nodes", "pairs", "mesh", "E", "G", "A", "Iy", "Iz", "J", "rho",
-                  "orientation", "elements", "mass", "psi"}, required=("type", "E", "A"))
+                  "orientation", "elements", "mass", "psi", "Asy", "Asz",
+                  "shear_coefficient", "releases"}, required=("type", "E", "A"))
     given = [k for k in ("nodes", "pairs", "mesh") if k in m]
     if len(given) != 1:
         r.fail(e, "give exactly one of 'nodes' (a chain), 'pairs' (a list of [A, B]) or "
@@ -891,8 +895,11 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
             kw["orientation"] = r.unit(m["orientation"], f"{e}.orientation")
         elif not planar:
             r.fail(e, "a 3D beam needs 'orientation' (a vector in its local x-z plane)")
+        kw.update(_shear_areas(m, e, r, planar))
+        kw.update(_releases(m, e, r, node, chain, pairs, planar))
     else:
-        for k in ("G", "Iy", "Iz", "J", "orientation"):
+        for k in ("G", "Iy", "Iz", "J", "orientation", "Asy", "Asz", "shear_coefficient",
+                  "releases"):
             if k in m:
                 r.fail(f"{e}.{k}", "a truss has only axial stiffness; remove it")
     elements = r.integer(m.get("elements", 1), f"{e}.elements", minimum=1)
@@ -906,3 +913,144 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
                   r.number(m.get("rho", 0.0), f"{e}.rho", nonneg=True),
                   elements=elements, mass=mass, pairs=pairs,
                   psi=r.number(m.get("psi", 0.0), f"{e}.psi", nonneg=True), **kw)
+
+
+def _shear_areas(m, e, r, planar):
+    """Shear areas of a Timoshenko beam: `Asy`, `Asz` (m^2) or `shear_coefficient`
+    k or [ky, kz] (As = k A); none: Euler-Bernoulli ({})."""
+    given = [k for k in ("Asy", "Asz") if k in m]
+    if "shear_coefficient" in m:
+        if given:
+            r.fail(e, "give shear areas 'Asy', 'Asz' or a 'shear_coefficient', not both")
+        v = m["shear_coefficient"]
+        ks = r.vector(v, f"{e}.shear_coefficient", n=2) if isinstance(v, list) \
+            else np.array([r.number(v, f"{e}.shear_coefficient", positive=True)] * 2)
+        if np.any(ks <= 0):
+            r.fail(f"{e}.shear_coefficient", "must be > 0")
+        A = r.number(m["A"], f"{e}.A", positive=True)
+        out = {"Asy": float(ks[0] * A), "Asz": float(ks[1] * A)}
+    elif given:
+        need = ("Asz",) if planar else ("Asy", "Asz")
+        for k in need:
+            if k not in m:
+                r.fail(e, f"a {'planar ' if planar else ''}Timoshenko beam needs '{k}' "
+                       "(the shear area for shear along local "
+                       f"{k[-1]}), or give a 'shear_coefficient'")
+        out = {k: r.number(m[k], f"{e}.{k}", positive=True) for k in given}
+    else:
+        return {}
+    if "G" not in m:
+        r.fail(e, "a Timoshenko beam (shear areas given) needs the shear modulus 'G'")
+    return out
+
+
+SUPPORT_COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
+SUPPORT_SHORTHANDS = {"pinned": ("ux", "uy", "uz"), "fixed": SUPPORT_COMPONENTS}
+
+
+def _supports(data, c, ground):
+    """Per-direction restraints of nodes: `NODE: [ux, uz, ry]`, `pinned`, `fixed`, or
+    `{fix: [...], axes: [x', y', z']}` with the components along given orthonormal axes."""
+    r, out = c.r, []
+    for n, v in r.mapping(data.get("supports"), "supports").items():
+        e = f"supports.{n}"
+        i = c.node(n, e)
+        if i in ground:
+            r.fail(e, f"node '{n}' is in ground (fixed in every direction); list it in one "
+                   "of them")
+        axes = np.eye(3)
+        if isinstance(v, dict):
+            r.keys(v, e, {"fix", "axes"}, required=("fix",))
+            if "axes" in v:
+                rows = r.listing(v["axes"], f"{e}.axes")
+                if len(rows) != 3:
+                    r.fail(f"{e}.axes", "give three axes x', y', z' (rows of a rotation)")
+                axes = np.array([r.unit(a, f"{e}.axes[{k}]") for k, a in enumerate(rows)])
+                if np.abs(axes @ axes.T - np.eye(3)).max() > 1e-9:
+                    r.fail(f"{e}.axes", "the three axes must be mutually orthogonal")
+            v = v["fix"]
+            e = f"{e}.fix"
+        comps = SUPPORT_SHORTHANDS.get(v) if isinstance(v, str) else r.listing(v, e, 1)
+        if comps is None:
+            r.fail(e, f"{v!r} is not a list of components ({', '.join(SUPPORT_COMPONENTS)}), "
+                   "'pinned' or 'fixed'")
+        for k, comp in enumerate(comps):
+            if comp not in SUPPORT_COMPONENTS or list(comps).count(comp) > 1:
+                r.fail(f"{e}[{k}]", f"{comp!r}: use each of {', '.join(SUPPORT_COMPONENTS)} "
+                       "at most once")
+        idx = [SUPPORT_COMPONENTS.index(k) for k in comps]
+        out.append(Support(i, axes[[k for k in idx if k < 3]],
+                           axes[[k - 3 for k in idx if k >= 3]], f"supports.{n}"))
+    return tuple(out)
+
+
+RELEASE_COMPONENTS = ("rx", "ry", "rz")
+
+
+def _releases(m, e, r, node, chain, pairs, planar):
+    """Member-end releases `{NODE: [rx, ry, rz]}` (local rotations set free at the
+    member's element ends at NODE) -> {"releases": ((node, (0..2, ...)), ...)} or {}."""
+    if "releases" not in m:
+        return {}
+    pieces = np.asarray(pairs, dtype=int).reshape(-1, 2) if pairs is not None else \
+        np.stack([chain[:-1], chain[1:]], axis=1)
+    out = {}
+    for n, comps in r.mapping(m["releases"], f"{e}.releases").items():
+        entry = f"{e}.releases.{n}"
+        i = node(n, entry)
+        if i not in pieces:
+            r.fail(entry, f"node '{n}' is not a node of this member")
+        comps = [comps] if isinstance(comps, str) else r.listing(comps, entry, 1)
+        for k, comp in enumerate(comps):
+            if comp not in RELEASE_COMPONENTS or comps.count(comp) > 1 or \
+                    (planar and comp != "ry"):
+                allowed = "ry (in a plane: xz model)" if planar else "rx, ry, rz (local axes)"
+                r.fail(f"{entry}[{k}]", f"{comp!r}: release each of {allowed} at most once")
+        out[i] = tuple(sorted(RELEASE_COMPONENTS.index(c) for c in comps))
+    for a, b in pieces:
+        if 0 in out.get(a, ()) and 0 in out.get(b, ()):
+            r.fail(f"{e}.releases", "rx released at both ends of a piece leaves it free to "
+                   "twist; release it at one end")
+    return {"releases": tuple(out.items())}
+
+
+SECTION_FILLS = ("A", "Iy", "Iz", "J")
+
+
+def _with_section(m, e, r):
+    """The member entry with `section: {shape, dimensions..., timoshenko}` replaced by
+    the A, Iy, Iz, J (and with timoshenko: true the shear areas) of that shape
+    (`cranefe.model.sections`); unchanged without a section."""
+    if not isinstance(m, dict) or "section" not in m:
+        return m
+    sec, es = r.mapping(m["section"], f"{e}.section"), f"{e}.section"
+    shape = sec.get("shape")
+    if shape not in SHAPES:
+        r.fail(f"{es}.shape", f"{shape!r} is not one of {', '.join(sorted(SHAPES))}")
+    dims = SHAPES[shape][0]
+    r.keys(sec, es, {"shape", "timoshenko", *dims}, required=("shape", *dims))
+    vals = {d: r.number(sec[d], f"{es}.{d}", positive=True) for d in dims}
+    thin = {"t": (2, ("D", "b", "h")), "tw": (1, ("b",)), "tf": (2, ("h",))}
+    for d, (n, outer) in thin.items():
+        for o in outer:
+            if d in vals and o in vals and n * vals[d] >= vals[o]:
+                r.fail(f"{es}.{d}", f"{'twice ' if n == 2 else ''}the thickness {d} must "
+                       f"be less than {o}")
+    both = [k for k in SECTION_FILLS if k in m]
+    if both:
+        r.fail(e, f"give the section or {', '.join(both)}, not both")
+    G = m.get("G")
+    nu = m["E"] / (2 * G) - 1 if isinstance(G, (int, float)) and G and \
+        isinstance(m.get("E"), (int, float)) else 0.3
+    A, Iy, Iz, J, Asy, Asz = section_properties(shape, vals, nu)
+    out = {k: v for k, v in m.items() if k != "section"}
+    out.update(A=A, Iy=Iy, Iz=Iz, J=J)
+    if m.get("type") == "truss":
+        for k in ("Iy", "Iz", "J"):
+            del out[k]
+    if r.boolean(sec.get("timoshenko", False), f"{es}.timoshenko"):
+        if any(k in m for k in ("Asy", "Asz", "shear_coefficient")):
+            r.fail(e, "timoshenko: true takes the shear areas from the section; remove "
+                   "Asy, Asz, shear_coefficient")
+        out.update(Asy=Asy, Asz=Asz)
+    return out

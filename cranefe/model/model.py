@@ -118,6 +118,14 @@ class Member:
     mass: str = "consistent"
     psi: float = 0.0
     pairs: np.ndarray = None     # (k, 2) separate two-node pieces (extension), else None
+    Asy: float = 0.0             # shear areas (Timoshenko beam); 0: no shear deformation
+    Asz: float = 0.0
+    releases: tuple = ()         # ((node, (local rotations 0=rx 1=ry 2=rz, ...)), ...)
+
+    @property
+    def timoshenko(self):
+        """Shear deformation and rotary inertia (shear areas given)."""
+        return self.Asy > 0 or self.Asz > 0
 
 
 @dataclass(frozen=True)
@@ -127,6 +135,16 @@ class LinearDrive:
     pinion_radius: float
     gear_ratio: float
     rotor_inertia: float
+
+
+@dataclass(frozen=True)
+class Support:
+    """Restrained directions of a node (model-format.md, "supports")."""
+
+    node: int
+    translations: np.ndarray  # (k, 3) unit directions whose displacement is zero
+    rotations: np.ndarray     # (k, 3) unit axes whose rotation is zero
+    entry: str                # "supports.A" for messages
 
 
 @dataclass(frozen=True)
@@ -156,6 +174,7 @@ class Model:
     linear_drives: tuple
     effects: Effects
     analysis: dict = field(default_factory=dict)   # from a scene; {} for a model
+    supports: tuple = ()                            # Support per supported node
     scene: str = None                               # scene name, if loaded from one
     scene_file: str = None                          # and its path
 
