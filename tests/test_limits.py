@@ -40,3 +40,28 @@ def test_scene_effects_are_bounded_too(tmp_path, capsys):
     assert main(["modes", str(scene)]) == 2
     err = capsys.readouterr().err
     assert "s.yaml" in err and "effects.rope_mass" in err
+
+
+SWEEP = """cranefe: 1
+sweep: too big
+base: m.yaml
+parameters:
+{params}
+outputs: [frequency_hz.1]
+output: t.h5
+"""
+
+
+@pytest.mark.parametrize("params,says", [
+    ("  masses.H: {range: [1000, 2000], count: 1000000000}", "parameters.masses.H.count"),
+    ("  masses.H: {range: [1000, 2000], count: 100000}\n"
+     "  ropes.hoist_rope.EA: {range: [1.0e7, 2.0e7], count: 100000}", "10,000,000,000"),
+])
+def test_sweep_size_is_bounded_before_the_grid_is_made(params, says, tmp_path, capsys):
+    """A sweep of count 1e9 or a 1e5 x 1e5 grid is refused at once (issue 15)."""
+    (tmp_path / "m.yaml").write_text(BASE)
+    spec = tmp_path / "s.yaml"
+    spec.write_text(SWEEP.format(params=params))
+    assert main(["sweep", str(spec), "--workers", "0"]) == 2
+    err = capsys.readouterr().err
+    assert says in err and "Traceback" not in err

@@ -2,6 +2,7 @@
 
 import copy
 import itertools
+import math
 import json
 import os
 import re
@@ -9,7 +10,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ModelError
 from ..model.load import _Reader, read_raw
 from ..model.yamlio import read_yaml
 from ..outpaths import inside, named_path
@@ -20,6 +20,9 @@ OUTPUT = re.compile(r"^(frequency_hz|omega|period_s|damping_ratio)\.([1-9][0-9]*
                     r"|^(phi2|rope_force_max)\.[A-Za-z0-9_-]+$|^luffing\.\w+\.\w+$")
 # outputs that need a scene of this analysis type as the base
 NEEDS = {"phi2": "transient", "rope_force_max": "transient", "luffing": "luffing"}
+
+
+MAX_VARIANTS = 1_000_000     # variants of one sweep, checked before any is made
 
 
 @dataclass(frozen=True)
@@ -211,7 +214,8 @@ def _parameter(name, spec, raw, r):
     log = spec.get("scale", "linear") == "log"
     if spec.get("scale", "linear") not in ("linear", "log") or (log and lo <= 0):
         r.fail(f"{e}.scale", "is linear or log (log needs a positive range)")
-    count = r.integer(spec["count"], f"{e}.count", minimum=1) if "count" in spec else None
+    count = r.integer(spec["count"], f"{e}.count", minimum=1, maximum=MAX_VARIANTS,
+                      why=": variants of one sweep") if "count" in spec else None
     return Parameter(name, path, in_scene, None, lo, hi, count, log)
 
 
@@ -231,10 +235,16 @@ def _variants(params, sampling, r):
         for p in params:
             if p.values is None and p.count is None:
                 r.fail(f"parameters.{p.name}", "a grid needs 'count' with a range")
+        sizes = [len(p.values) if p.values is not None else p.count for p in params]
+        if math.prod(sizes) > MAX_VARIANTS:
+            r.fail("parameters", f"the grid has {' x '.join(map(str, sizes))} = "
+                   f"{math.prod(sizes):,} variants, more than the limit of {MAX_VARIANTS:,}; "
+                   "use fewer points or sampling: {method: lhs, samples: N}")
         return np.array(list(itertools.product(*(_grid(p) for p in params))), dtype=float)
     if method not in ("random", "lhs"):
         r.fail("sampling.method", f"{method!r} is not grid, random or lhs")
-    n = r.integer(sampling.get("samples", 100), "sampling.samples", minimum=1)
+    n = r.integer(sampling.get("samples", 100), "sampling.samples", minimum=1,
+                  maximum=MAX_VARIANTS, why=": variants of one sweep")
     seed = r.integer(sampling.get("seed", 0), "sampling.seed", minimum=0)
     if method == "random":
         u = np.random.default_rng(seed).random((n, len(params)))
