@@ -31,13 +31,28 @@ GOALS = {"ratio_assembly": 2.0, "ratio_floor": 1.05, "ratio_opensees": 1.0}
 MISSING = "missing"
 
 
-def _process(args):
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def _environment(tmp):
+    """The processes' environment: Python's default bytecode cache (kept in `tmp`, not in
+    the source tree) even where PYTHONDONTWRITEBYTECODE is set, so that no process is
+    charged the compilation of its modules on every start (an installed package has its
+    bytecode; numpy's and scipy's have theirs)."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    env["PYTHONPYCACHEPREFIX"] = os.path.join(tmp, "pycache")
+    return env
+
+
+def _process(args, env):
     """Wall time, CPU time (user + system) and JSON output of one whole process, and its
-    peak memory (MB)."""
+    peak memory (MB). args[0]: a module, or a script file of this folder."""
+    run = [os.path.join(HERE, "_run.py"), os.path.join(HERE, args[0])] \
+        if args[0].endswith(".py") else ["-m", "cranefe.studies._run", args[0]]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    p = subprocess.run([sys.executable, "-m", "cranefe.studies._run", *args],
-                       capture_output=True, text=True)
+    p = subprocess.run([sys.executable, *run, *args[1:]], capture_output=True, text=True,
+                       env=env)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if p.returncode != 0:
@@ -47,13 +62,16 @@ def _process(args):
     return wall, cpu, json.loads(p.stdout), peak
 
 
-def _processes(commands, repeat):
+def _processes(commands, repeat, env, warm_up=False):
     """Each command's best run (least wall time) over `repeat` rounds; the commands
-    alternate within a round. Returns {name: (wall, cpu, doc, peak)}."""
+    alternate within a round (after one untimed round that fills the bytecode cache, if
+    `warm_up`). Returns {name: (wall, cpu, doc, peak)}."""
+    for args in commands.values() if warm_up else ():
+        _process(args, env)
     best = {}
     for _ in range(repeat):
         for name, args in commands.items():
-            out = _process(args)
+            out = _process(args, env)
             if name not in best or out[0] < best[name][0]:
                 best[name] = out
     return best
@@ -106,7 +124,7 @@ def _opensees_available():
     return p.returncode == 0
 
 
-def _row(n, tmp, repeat, have_ops):
+def _row(n, tmp, repeat, have_ops, warm_up):
     """One size: the assembly and whole-process comparisons."""
     from ..model.generate import panels_for, to_yaml, tower_crane, with_meshes
     model = tower_crane(panels=panels_for(n))
@@ -116,10 +134,10 @@ def _row(n, tmp, repeat, have_ops):
     modes = ["cranefe", "modes", "--count", str(COUNT), "--json"]
     commands = {"cranefe": modes[:2] + [yml] + modes[2:],
                 "mesh": modes[:2] + [mesh_yml] + modes[2:],
-                "floor": ["cranefe.studies._floor", yml, str(COUNT)]}
+                "floor": ["_floor.py", yml, str(COUNT)]}
     if have_ops:
-        commands["opensees"] = ["cranefe.studies._opensees", yml, str(COUNT)]
-    p = _processes(commands, repeat)
+        commands["opensees"] = ["_opensees.py", yml, str(COUNT)]
+    p = _processes(commands, repeat, _environment(tmp), warm_up)
     (c_t, c_cpu, c_doc, c_mem), (f_t, f_cpu, f_doc, f_mem) = p["cranefe"], p["floor"]
     m_t, _, m_doc, m_mem = p["mesh"]
     row = {"dofs": c_doc["dofs"], "cranefe_s": c_t, "floor_s": f_t,
@@ -183,8 +201,8 @@ def run(outdir, quick=False):
     sizes = (1000, 3000) if quick else (1000, 10000, 100000)
     have_ops = _opensees_available()
     with tempfile.TemporaryDirectory() as tmp:
-        rows = [_row(n, tmp, 1 if quick else (2 if n >= 100000 else 3), have_ops)
-                for n in sizes]
+        rows = [_row(n, tmp, 1 if quick else (2 if n >= 100000 else 3), have_ops, k == 0)
+                for k, n in enumerate(sizes)]
     first = ["dofs", "ratio_assembly", "ratio_floor", "ratio_opensees", "cranefe_s",
              "floor_s", "opensees_s", "assembly_cranefe_s", "assembly_floor_s",
              "max_rel_diff"]
