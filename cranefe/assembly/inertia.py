@@ -116,7 +116,8 @@ def _trusses(model, dofs, sec, tr, t, f):
     m_e = sec.rho[tr] * sec.A[tr] * l
     t.add(idx[lump], idx[lump], np.repeat(m_e[lump] / 2, 6))
     t.add_blocks(idx[~lump], rope_mass(sec.rho[tr][~lump] * sec.A[tr][~lump], l[~lump]))
-    np.add.at(f, idx, (m_e / 2)[:, None] * np.tile(model.gravity, 2))
+    f += np.bincount(idx.ravel(), ((m_e / 2)[:, None] * np.tile(model.gravity, 2)).ravel(),
+                     minlength=len(f))
 
 
 def _beams(model, dofs, sec, b, t, f):

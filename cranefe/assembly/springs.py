@@ -36,13 +36,13 @@ class _Part:
     """Rows of one kind of element, concatenated by `spring_rows`."""
 
     R: sp.csr_matrix
-    c: list
-    psi: list
-    names: list
-    length: list
-    rope: list
-    spring: list
-    member: list
+    c: object                 # list or array (ne,), as the others
+    psi: object
+    names: object
+    length: object
+    rope: object
+    spring: object
+    member: object
 
 
 def all_coords(model, layout, mm):
@@ -76,9 +76,11 @@ def _rope_elements(model, layout, rm):
     v = np.einsum("ki,kij->kj", rm.e, B[:, 3:] - B[:, :3])
     ne = len(rm.length)
     R = coo([np.repeat(np.arange(ne), 8)], [dofs.ravel()], [v.ravel()], (ne, layout.size))
-    return _Part(R, list(EA / rm.length), [model.ropes[k].psi for k in rm.rope],
-                 [f"rope {model.ropes[k].name}" for k in rm.rope], list(rm.length),
-                 list(rm.rope), [-1] * ne, [-1] * ne)
+    psi = np.array([r.psi for r in model.ropes], dtype=float)
+    names = np.array([f"rope {r.name}" for r in model.ropes], dtype=object)
+    minus = np.full(ne, -1)
+    return _Part(R, EA / rm.length, psi[rm.rope], names[rm.rope], rm.length, rm.rope, minus,
+                 minus)
 
 
 def _trusses(model, layout, mm):
@@ -88,10 +90,21 @@ def _trusses(model, layout, mm):
     e, l = member_geometry(model, layout, mm, t)
     cc, v = elongation_rows(e, np.ones(len(t)), layout.node(mm.node[t, 0]),
                             layout.node(mm.node[t, 1]))
-    R = coo([np.repeat(np.arange(len(t)), 6)], [cc.ravel()], [v.ravel()], (len(t), layout.size))
-    return _Part(R, list(sec.E[t] * sec.A[t] / l), list(sec.psi[t]),
-                 [f"member {model.members[k].name}" for k in mm.member[t]], list(l),
-                 [-1] * len(t), [-1] * len(t), list(t))
+    R = _rows_csr(cc, v, layout.size)
+    names = np.array([f"member {m.name}" for m in model.members], dtype=object)
+    minus = np.full(len(t), -1)
+    return _Part(R, sec.E[t] * sec.A[t] / l, sec.psi[t], names[mm.member[t]], l, minus,
+                 minus, t)
+
+
+def _rows_csr(cols, vals, size):
+    """CSR (ne, size) with row k holding vals[k] at the distinct columns cols[k] (ne, m):
+    built directly (indptr every m entries), with no COO step."""
+    ne, m = cols.shape
+    order = np.argsort(cols, axis=1, kind="stable")
+    return sp.csr_matrix((np.take_along_axis(vals, order, axis=1).ravel(),
+                          np.take_along_axis(cols, order, axis=1).ravel(),
+                          np.arange(0, m * ne + 1, m)), shape=(ne, size))
 
 
 def _springs(model, layout):
@@ -137,7 +150,8 @@ def spring_rows(model, layout, ropes_fe=None, members=None):
     parts.append(_springs(model, layout))
 
     def cat(name, dtype=float):
-        return np.array([x for p in parts for x in getattr(p, name)], dtype=dtype)
+        return np.concatenate([np.asarray(getattr(p, name), dtype=dtype).reshape(-1)
+                               for p in parts])
 
     return SpringRows(sp.vstack([p.R for p in parts]).tocsr(), cat("c"), cat("psi"),
                       tuple(cat("names", object)), cat("length"), cat("rope", int),

@@ -111,9 +111,10 @@ def direction_tensor(model, effects, n_nodes):
     if a_list:
         a, b = np.concatenate(a_list).astype(int), np.concatenate(b_list).astype(int)
         e, _ = span_geometry(model.coords, a, b)
-        ee = e[:, :, None] * e[:, None, :]
-        np.add.at(D, a, ee)
-        np.add.at(D, b, ee)
+        ee = (e[:, :, None] * e[:, None, :]).reshape(-1, 9)
+        ends = np.concatenate([a, b])          # sums per node: bincount, not np.add.at
+        D += np.stack([np.bincount(ends, np.tile(ee[:, j], 2), minlength=n_nodes)
+                       for j in range(9)], axis=1).reshape(n_nodes, 3, 3)
     return D
 
 
@@ -123,12 +124,20 @@ class _Map:
     def __init__(self):
         self.rows, self.cols, self.vals = [], [], []
         self.labels, self.kinds = [], []
+        self.rotations = []       # indices of rotation coordinates (drums, rx, ry, rz)
 
     def new(self, label, kind):
         """A new generalised coordinate; returns its index."""
         self.labels.append(label)
         self.kinds.append(kind)
+        if kind == "drum" or (kind in ("body", "node") and label[-2:] in ("rx", "ry", "rz")):
+            self.rotations.append(len(self.labels) - 1)
         return len(self.labels) - 1
+
+    def translations(self, labels):
+        """Many node translations at once (`new` for each, without a rotation)."""
+        self.labels += labels
+        self.kinds += ["node"] * len(labels)
 
     def add(self, rows, cols, vals):
         self.rows.append(np.ravel(rows))
@@ -247,8 +256,8 @@ def _free_nodes(model, layout, D, free, node_names, m):
     for k, c in enumerate(trans):
         m.add(layout.node(nodes_full)[:, c], q0 + k + len(trans) * np.arange(len(nodes_full)),
               np.ones(len(nodes_full)))
-    m.labels += [f"node {node_names[i]} {AXES[c]}" for i in nodes_full for c in trans]
-    m.kinds += ["node"] * (len(trans) * len(nodes_full))
+    axes = [f" {AXES[c]}" for c in trans]
+    m.translations([f"node {node_names[i]}{a}" for i in nodes_full.tolist() for a in axes])
     for i, wi, vi in zip(free[~full], w[~full], v[~full] if v is not None else []):
         for vec in vi[:, wi > 1e-9 * max(wi.max(), 1e-300)].T:
             vec = np.where(np.abs(vec) > 1e-15, vec, 0.0)
@@ -306,12 +315,13 @@ def build_dofs(model, effects=None):
     T_map = m.matrix(layout.size)
     constraints = _constraint_rows(model, effects, layout, T_map, groups.of_body, groups.q,
                                    groups.ref, comps)
-    rotation = np.array([k == "drum" or (k in ("body", "node") and lab[-2:] in
-                                          ("rx", "ry", "rz"))
-                         for k, lab in zip(m.kinds, m.labels)], dtype=bool)
+    rotation = np.zeros(len(m.labels), dtype=bool)
+    rotation[m.rotations] = True
     T_c, keep = _eliminate(constraints, len(m.labels), rotation, model.length_scale)
+    kept = len(keep) == len(m.labels)       # then keep is every coordinate, in order
     return DofMap(layout, (T_map @ T_c).tocsr(), T_map, T_c,
-                  tuple(m.labels[i] for i in keep), tuple(m.kinds[i] for i in keep),
+                  tuple(m.labels) if kept else tuple(m.labels[i] for i in keep),
+                  tuple(m.kinds) if kept else tuple(m.kinds[i] for i in keep),
                   groups.of_body, groups.ref, groups.q, groups.carrier, tuple(constraints),
                   coords, rm, mm)
 

@@ -5,6 +5,7 @@ names the file, the entry (``ropes.hoist.path[2]``) and what to change.
 """
 
 import difflib
+import itertools
 import math
 import os
 from dataclasses import dataclass
@@ -281,6 +282,22 @@ class _Names:
 
     def add(self, kind, name, index):
         self.kinds.setdefault(name, {})[kind] = index
+        if kind == "node":
+            self._node_index = None
+
+    def add_all(self, kind, names):
+        """`add` of names[i] as index i, for each i."""
+        kinds = self.kinds
+        for i, name in enumerate(names):
+            kinds.setdefault(name, {})[kind] = i
+        if kind == "node":
+            self._node_index = None
+
+    def node_index(self):
+        """name -> node index of every node (built once while no node is added)."""
+        if getattr(self, "_node_index", None) is None:
+            self._node_index = {n: ks["node"] for n, ks in self.kinds.items() if "node" in ks}
+        return self._node_index
 
     def get(self, name, kinds, entry):
         kinds = (kinds,) if isinstance(kinds, str) else kinds
@@ -351,8 +368,7 @@ def _nodes(data, c):
         r.fail("nodes", "a model needs at least one node")
     node_names = list(nodes)
     coords = _coordinates(nodes, node_names, r)
-    for i, n in enumerate(node_names):
-        names.add("node", n, i)
+    names.add_all("node", node_names)
     if planar and np.any(coords[:, 1] != 0):
         i = int(np.flatnonzero(coords[:, 1] != 0)[0])
         r.fail(f"nodes.{node_names[i]}", f"y = {coords[i, 1]:g} is off the plane of a "
@@ -378,12 +394,13 @@ def _nodes(data, c):
 
 def _ground(data, c):
     r = c.r
-    ground = []
+    ground, seen = [], set()
     for i, n in enumerate(r.listing(data.get("ground", []) or [], "ground")):
         g = c.node(n, f"ground[{i}]")
-        if g in ground:
+        if g in seen:
             r.fail(f"ground[{i}]", f"node '{n}' is listed twice")
         ground.append(g)
+        seen.add(g)
 
     return ground
 
@@ -784,8 +801,9 @@ def _pname(p, node_names, drums):
 def _coordinates(nodes, node_names, r):
     """(n, 3) node coordinates: a vectorised path for big files, per-node messages else."""
     values = [nodes[n] for n in node_names]
-    if all(type(v) is list and len(v) == 3 and all(type(x) in (int, float) for x in v)
-           for v in values):
+    # the same test as per value, in C-speed passes: lists of three ints or floats
+    if set(map(type, values)) <= {list} and set(map(len, values)) <= {3} and \
+            set(map(type, itertools.chain.from_iterable(values))) <= {int, float}:
         coords = np.array(values, dtype=float)
         if np.all(np.isfinite(coords)):
             return coords
@@ -864,9 +882,11 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
     else:
         if "pairs" in m:
             raw = r.listing(m["pairs"], f"{e}.pairs", min_len=1)
-            lookup = {n: ks["node"] for n, ks in names.kinds.items() if "node" in ks}
-            try:
-                pairs = np.array([[lookup[a], lookup[b]] for a, b in raw], dtype=int)
+            lookup = names.node_index()
+            try:       # strict zip: pairs of two (as `for a, b in raw` would require)
+                a, b = zip(*raw, strict=True) if raw else ((), ())
+                pairs = np.column_stack([np.fromiter(map(lookup.__getitem__, x), int, len(x))
+                                         for x in (a, b)])
             except (KeyError, TypeError, ValueError):
                 for k, p in enumerate(raw):
                     if not isinstance(p, list) or len(p) != 2:
