@@ -71,6 +71,7 @@ class Mechanism:
         self._elements(model)
         self._drums(model)
         self._projections()
+        self._chain_setup(model)
         self._static(model)
 
     # ----------------------------------------------------------------- kinematics
@@ -123,23 +124,49 @@ class Mechanism:
     def body_motions(self, t):
         """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity)."""
         out = {GROUND: kernels.IDENTITY_MOTION}
-        m = self.model
-        for b in self.order:
-            p, k = self.parent[b]
-            j = m.joints[k]
-            d = self.driven_joints.get(k)
+        for b, p, d, sign, hinge, K, K2, point, axis in self._chain:
             if d is None:
                 out[b] = out[p]
                 continue
             s, ds, dds = d.motion(t)
-            sign = 1.0 if j.bodies[1] == b else -1.0    # motion of bodies[1] rel. bodies[0]
-            if j.type == "hinge":
-                jm = kernels.hinge_motion(j.axis, m.coords[j.at], sign * s, sign * ds,
-                                          sign * dds)
+            s, ds, dds = sign * s, sign * ds, sign * dds
+            if hinge:
+                # kernels.hinge_motion with its skew matrices K, K2 made once at setup
+                sn, cs = np.sin(s), np.cos(s)
+                R = self._I3 + sn * K + (1 - cs) * K2
+                A = cs * K + sn * K2
+                dR = ds * A
+                ddR = dds * A + ds**2 * (-sn * K + cs * K2)
+                jm = (R, dR, ddR, point - R @ point, -dR @ point, -ddR @ point)
             else:
-                jm = kernels.slider_motion(j.axis, sign * s, sign * ds, sign * dds)
-            out[b] = kernels.compose(out[p], jm)
+                jm = kernels.slider_motion(axis, s, ds, dds)
+            # composing with the ground's identity motion changes nothing: skipped
+            out[b] = jm if p == GROUND else kernels.compose(out[p], jm)
         return out
+
+    def _chain_setup(self, model):
+        """Constant per-body data of `body_motions` and `kinematics` (hot path)."""
+        from ...elements.bodies import skew
+        self._I3 = np.eye(3)
+        chain = []
+        for b in self.order:
+            p, k = self.parent[b]
+            j = model.joints[k]
+            d = self.driven_joints.get(k)
+            sign = 1.0 if j.bodies[1] == b else -1.0    # motion of bodies[1] rel. bodies[0]
+            hinge = j.type == "hinge"
+            K = skew(j.axis) if hinge else None
+            chain.append((b, p, d, sign, hinge, K, None if K is None else K @ K,
+                          np.asarray(model.coords[j.at], float), j.axis))
+        self._chain = chain
+        groups = []
+        for b in [GROUND] + list(self.order):
+            idx = self.kin[self.carrier[self.kin] == b]
+            if len(idx):
+                groups.append((b, idx, model.coords[idx]))
+        self._groups = groups
+        self._profile_drums = [(k, d) for k, d in enumerate(self.drum_drive)
+                               if d is not None and d.kind == "profile"]
 
     def _nodes(self, model):
         nn = self.nn
@@ -315,21 +342,17 @@ class Mechanism:
         """Positions, velocities, accelerations of kinematic nodes at t, and the
         prescribed drums' (theta, omega, alpha)."""
         mot = self.body_motions(t)
-        X0 = self.model.coords
         X = np.zeros((self.nn, 3))
         V = np.zeros((self.nn, 3))
         A = np.zeros((self.nn, 3))
-        for b, (R, dR, ddR, p, dp, ddp) in mot.items():
-            idx = self.kin[self.carrier[self.kin] == b]
-            if len(idx):
-                Xr = X0[idx]
-                X[idx] = Xr @ R.T + p
-                V[idx] = Xr @ dR.T + dp
-                A[idx] = Xr @ ddR.T + ddp
+        for b, idx, Xr in self._groups:
+            R, dR, ddR, p, dp, ddp = mot[b]
+            X[idx] = Xr @ R.T + p
+            V[idx] = Xr @ dR.T + dp
+            A[idx] = Xr @ ddR.T + ddp
         th = np.zeros((self.nd, 3))
-        for k, d in enumerate(self.drum_drive):
-            if d is not None and d.kind == "profile":
-                th[k] = d.motion(t)
+        for k, d in self._profile_drums:
+            th[k] = d.motion(t)
         return X, V, A, th
 
     def place(self, t, q, v, kin=None):
