@@ -410,8 +410,12 @@ class Mechanism:
         self.Fg = self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, nf))
         self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
 
-    def evaluate(self, t, q, v, taut, kin=None, damping=True):
-        """Length: the engine's hot path (residual and tangent of one Newton iteration)
+    def evaluate(self, t, q, v, taut, kin=None, damping=True, powers=True):
+        """Forces and tangents at (t, q, v); with powers=False the power terms of the
+        energy balance are left to `powers(ev)` (the integrator needs them only for the
+        iterate it accepts).
+
+        Length: the engine's hot path (residual and tangent of one Newton iteration)
         kept in one frame to avoid call overhead per step.
         """
         kin = self.kinematics(t) if kin is None else kin
@@ -470,18 +474,6 @@ class Mechanism:
             drive_torque[k] = tq
             F[i] += tq
             C[i, i] -= dtq
-        # energy carried onto (off) the drums with the wound rope: the drum's work
-        # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
-        # (S lambda - w), w = EA (lambda ln lambda - lambda + 1)
-        if len(self.rope_drum):
-            wden = np.where(taut, self.EA * (lam * np.log(lam) - lam + 1), 0.0)
-            P_wound = float(((S - (S * lam - wden) / self.lam_ref) * (Rd @ omega)).sum())
-        else:
-            P_wound = 0.0
-        # power fed through kinematic nodes (moving sheaves, dead ends on bodies)
-        Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
-            np.where(self.kin_a[:, None], V[self.span_a], 0.0)
-        rVk = self.A @ np.einsum("si,si->s", fe, Vk)
         # springs
         N = np.zeros(len(self.sp_k))
         if len(self.sp_k):
@@ -501,11 +493,41 @@ class Mechanism:
                 F[:nx] -= Gs.T @ Nd
                 C[:nx, :nx] += (Gs.T * bs) @ Gs
                 N = N + Nd
-                Pk = np.einsum("rij,ij->r", rs[:, self.kin], V[self.kin])
-                P_sp_kin, P_sp_diss = float(N @ Pk), float(Nd @ ddot)
+                spring = (rs, float(Nd @ ddot))
             else:
-                Pk = np.einsum("rij,ij->r", rs[:, self.kin], V[self.kin])
-                P_sp_kin, P_sp_diss = float(N @ Pk), 0.0
+                spring = (rs, 0.0)
+        else:
+            spring = None
+        ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
+                  None, None, None)
+        ev._ctx = (fe, lam, taut, spring)
+        if powers:
+            self.powers(ev)
+        return ev
+
+    def powers(self, ev):
+        """Fill the power terms of `ev` (W) and the guided loads' kinetic energy (J)."""
+        if ev.P_drive is not None:
+            return ev
+        fe, lam, taut, spring = ev._ctx
+        S, Sd, V, omega, Rd = ev.S, ev.Sd, ev.V, ev.omega, self.Rd
+        # energy carried onto (off) the drums with the wound rope: the drum's work
+        # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
+        # (S lambda - w), w = EA (lambda ln lambda - lambda + 1)
+        if len(self.rope_drum):
+            wden = np.where(taut, self.EA * (lam * np.log(lam) - lam + 1), 0.0)
+            P_wound = float(((S - (S * lam - wden) / self.lam_ref) * (Rd @ omega)).sum())
+        else:
+            P_wound = 0.0
+        # power fed through kinematic nodes (moving sheaves, dead ends on bodies)
+        Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
+            np.where(self.kin_a[:, None], V[self.span_a], 0.0)
+        rVk = self.A @ np.einsum("si,si->s", fe, Vk)
+        # springs: the power fed through kinematic nodes and the dashpots' dissipation
+        if spring is not None:
+            rs, P_sp_diss = spring
+            Pk = np.einsum("rij,ij->r", rs[:, self.kin], V[self.kin])
+            P_sp_kin = float(ev.N @ Pk)
         else:
             P_sp_kin = P_sp_diss = 0.0
         # power of the drives: kinematic nodes pulled by the ropes and springs, prescribed
@@ -515,15 +537,16 @@ class Mechanism:
             d = self.drum_drive[k]
             if d is not None and d.kind == "profile":
                 P += float(Rd[:, k] @ (S + Sd)) * omega[k]
-        P += float(drive_torque @ omega)
+        P += float(ev.drive_torque @ omega)
         # loads without sway are guided horizontally with their carrier: the guidance
         # does the work of their horizontal kinetic energy (the ropes hang vertically)
         T_guided = 0.0
         if not self.sway and len(self.free):
             Vh = V[self.free] - np.outer(V[self.free] @ self.up, self.up)
             T_guided = 0.5 * float(self.free_mass @ np.einsum("ij,ij->i", Vh, Vh))
-        return Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
-                    P, float(Sd @ edot) + P_sp_diss, P_wound, T_guided)
+        ev.P_drive, ev.P_diss = P, float(Sd @ ev.edot) + P_sp_diss
+        ev.P_wound, ev.T_guided = P_wound, T_guided
+        return ev
 
     def energy(self, ev, taut):
         """Kinetic, gravity potential and elastic energy (J)."""
