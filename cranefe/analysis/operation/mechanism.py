@@ -121,14 +121,19 @@ class Mechanism:
         self.free_bodies = free_bodies
         self.driven_joints = driven
 
-    def body_motions(self, t):
-        """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity)."""
+    def body_motions(self, t, states=None):
+        """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity); `states`:
+        the driven joints' (s, s', s'') at t in the order of the chain, if known."""
         out = {GROUND: kernels.IDENTITY_MOTION}
+        if states is None:
+            states = [d.motion(t) for d in self._chain_drives]
+        c = 0
         for b, p, d, sign, hinge, K, K2, point, axis in self._chain:
             if d is None:
                 out[b] = out[p]
                 continue
-            s, ds, dds = d.motion(t)
+            s, ds, dds = states[c]
+            c += 1
             s, ds, dds = sign * s, sign * ds, sign * dds
             if hinge:
                 # kernels.hinge_motion with its skew matrices K, K2 made once at setup
@@ -159,12 +164,18 @@ class Mechanism:
             chain.append((b, p, d, sign, hinge, K, None if K is None else K @ K,
                           np.asarray(model.coords[j.at], float), j.axis))
         self._chain = chain
+        self._chain_drives = [c[2] for c in chain if c[2] is not None]
+        self._kin_key = self._kin_last = None
         groups = []
         for b in [GROUND] + list(self.order):
             idx = self.kin[self.carrier[self.kin] == b]
             if len(idx):
                 groups.append((b, idx, model.coords[idx]))
         self._groups = groups
+        self._H = np.eye(3) - np.outer(self.up, self.up)   # horizontal projection
+        self._X0_free = model.coords[self.free]
+        self._X0_root = model.coords[self.root]
+        self._qd = np.array(self.qdrums, dtype=int)
         self._profile_drums = [(k, d) for k, d in enumerate(self.drum_drive)
                                if d is not None and d.kind == "profile"]
 
@@ -340,8 +351,15 @@ class Mechanism:
     # ----------------------------------------------------------------- state at t
     def kinematics(self, t):
         """Positions, velocities, accelerations of kinematic nodes at t, and the
-        prescribed drums' (theta, omega, alpha)."""
-        mot = self.body_motions(t)
+        prescribed drums' (theta, omega, alpha). The arrays are shared with the last
+        call when every drive is in the same state (a crane at rest between moves):
+        read them, never write."""
+        states = tuple(d.motion(t) for d in self._chain_drives)
+        drums = tuple(d.motion(t) for _, d in self._profile_drums)
+        key = (states, drums)
+        if key == self._kin_key:
+            return self._kin_last
+        mot = self.body_motions(t, states)
         X = np.zeros((self.nn, 3))
         V = np.zeros((self.nn, 3))
         A = np.zeros((self.nn, 3))
@@ -351,8 +369,9 @@ class Mechanism:
             V[idx] = Xr @ dR.T + dp
             A[idx] = Xr @ ddR.T + ddp
         th = np.zeros((self.nd, 3))
-        for k, d in self._profile_drums:
-            th[k] = d.motion(t)
+        for (k, _), m in zip(self._profile_drums, drums):
+            th[k] = m
+        self._kin_key, self._kin_last = key, (X, V, A, th)
         return X, V, A, th
 
     def place(self, t, q, v, kin=None):
@@ -364,18 +383,15 @@ class Mechanism:
             P = (self.E @ q[:self.nx]).reshape(nf, 3)
             W = (self.E @ v[:self.nx]).reshape(nf, 3)
             if not self.sway:
-                up = self.up
-                H = np.eye(3) - np.outer(up, up)
-                X0 = self.model.coords
-                base = (X0[self.free] + X[self.root] - X0[self.root]) @ H.T
-                P = P + base
+                H = self._H
+                P = P + (self._X0_free + X[self.root] - self._X0_root) @ H.T
                 W = W + V[self.root] @ H.T
             X[self.free] = P
             V[self.free] = W
         theta, omega = th[:, 0].copy(), th[:, 1].copy()
-        nq = self.nx
-        for c, k in enumerate(self.qdrums):
-            theta[k], omega[k] = q[nq + c], v[nq + c]
+        if len(self.qdrums):
+            theta[self._qd] = q[self.nx:]
+            omega[self._qd] = v[self.nx:]
         return X, V, theta, omega
 
     def unstretched(self, theta):
@@ -383,7 +399,8 @@ class Mechanism:
         L0 = self.L0_ref.copy()
         if len(self.rope_drum):
             fac = self.end_radius / self.lam_ref[self.rope_drum]
-            np.subtract.at(L0, self.rope_drum, fac * theta[self.drum_of_end])
+            L0 -= np.bincount(self.rope_drum, weights=fac * theta[self.drum_of_end],
+                              minlength=len(L0))
         return L0
 
     def _projections(self):
