@@ -347,6 +347,7 @@ class Mechanism:
         self.J = np.array([model.drums[k].reduced_inertia for k in self.qdrums])
         self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3), self.J])
+        self.invM_x = 1.0 / self.M[:self.nx]
 
     # ----------------------------------------------------------------- state at t
     def kinematics(self, t):
@@ -416,6 +417,7 @@ class Mechanism:
             if a in where:
                 D[s_] -= self.E[3 * where[a]:3 * where[a] + 3]
         self.D = D
+        self.DtD = np.einsum("sia,sib->sab", D, D).reshape(ns, -1)   # D_s^T D_s
         nr = len(self.ropes)
         self.A = np.zeros((nr, ns))
         self.A[self.span_rope, np.arange(ns)] = 1.0
@@ -444,7 +446,8 @@ class Mechanism:
         nr = len(L)
         lam = L / L0
         fe = self.falls[:, None] * e                         # span rows f e
-        G = self.A @ np.einsum("si,sij->sj", fe, self.D)     # (nr, nx) dL/dq_x
+        eD = np.einsum("si,sij->sj", e, self.D)              # (ns, nx) e_s . D_s
+        G = self.A @ (self.falls[:, None] * eD)              # (nr, nx) dL/dq_x
         Rd = self.Rd
         dV = V[self.span_b] - V[self.span_a]
         edot = self.A @ np.einsum("si,si->s", fe, dV) + Rd @ omega   # elongation rate
@@ -454,13 +457,14 @@ class Mechanism:
         cL = np.where(taut, self.EA / L, 0.0)
         F[:nx] = self.Fg - G.T @ S
         # tangent: EA/L G^T G + sum f S / l (I - e e^T) on the span ends
-        K[:nx, :nx] = (G.T * cL) @ G + kernels.projected_tangent(
-            self.falls * S[self.span_rope] / l, e, self.D)
+        # (kernels.projected_tangent, w = f S / l, with the constant D_s^T D_s made once)
+        w = self.falls * S[self.span_rope] / l
+        K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) - (eD.T * w) @ eD
         # damping: b = psi c / (2 pi w), c = EA/L, w the rope's axial frequency now
         Sd = np.zeros(nr)
         b = np.zeros(nr)
         if damping and self.damped and nr:
-            w2 = cL * np.einsum("rj,rj->r", G, G / self.M[:nx])
+            w2 = cL * ((G * G) @ self.invM_x)
             for cc, k in enumerate(self.qdrums):
                 w2 = w2 + cL * Rd[:, k] ** 2 / self.J[cc]
             w = np.sqrt(np.maximum(w2, 0.0))
