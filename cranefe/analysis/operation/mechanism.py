@@ -143,10 +143,16 @@ class Mechanism:
                 dR = ds * A
                 ddR = dds * A + ds**2 * (-sn * K + cs * K2)
                 jm = (R, dR, ddR, point - R @ point, -dR @ point, -ddR @ point)
+                # composing with the ground's identity motion changes nothing: skipped
+                par = out[p]
+                out[b] = jm if par is kernels.IDENTITY_MOTION else kernels.compose(par, jm)
             else:
-                jm = kernels.slider_motion(axis, s, ds, dds)
-            # composing with the ground's identity motion changes nothing: skipped
-            out[b] = jm if p == GROUND else kernels.compose(out[p], jm)
+                # kernels.compose(parent, slider_motion(axis, s, ds, dds)) without the
+                # products by the slider's R = I, dR = ddR = 0 (the same numbers)
+                Rp, dRp, ddRp, pp, dpp, ddpp = out[p]
+                pj, dpj, ddpj = s * axis, ds * axis, dds * axis
+                out[b] = (Rp, dRp, ddRp, Rp @ pj + pp, dRp @ pj + Rp @ dpj + dpp,
+                          ddRp @ pj + 2 * dRp @ dpj + Rp @ ddpj + ddpp)
         return out
 
     def _chain_setup(self, model):
