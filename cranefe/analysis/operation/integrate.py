@@ -12,6 +12,7 @@ the Illinois variant of regula falsi on the step length, each trial a full step)
 import time
 
 import numpy as np
+from scipy.linalg.lapack import dgesv
 
 from ...errors import AnalysisError
 from .mechanism import Mechanism
@@ -72,11 +73,10 @@ class Stepper:
             Rs = M * a1 - ev.F
             J = ev.K + c2 * ev.C
             J.ravel()[self.diag] += c1 * M
-            try:
-                dq = np.linalg.solve(J, -Rs)
-            except np.linalg.LinAlgError:
-                return None
-            if not np.isfinite(dq).all():
+            # LAPACK's dgesv directly (LU with partial pivoting, as np.linalg.solve) without
+            # numpy's per-call wrapping; info > 0: J singular
+            _, _, dq, info = dgesv(J, -Rs, overwrite_a=True, overwrite_b=True)
+            if info != 0 or not np.isfinite(dq).all():
                 return None
             q1 = q1 + dq
             dq_norm = np.abs(dq * self.wq).max(initial=0.0)

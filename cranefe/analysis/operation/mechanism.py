@@ -479,7 +479,8 @@ class Mechanism:
             F[:nx] -= G.T @ Sd
             C[:nx, :nx] += (G.T * b) @ G
         # drums with a coordinate: the ropes' torque -(S + Sd) R
-        dS = np.where(taut, self.EA / (self.lam_ref * L0), 0.0)     # dS/d(R theta)
+        if self.qdrums:
+            dS = np.where(taut, self.EA / (self.lam_ref * L0), 0.0)  # dS/d(R theta)
         drive_torque = np.zeros(self.nd)
         for cc, k in enumerate(self.qdrums):
             i = nx + cc
