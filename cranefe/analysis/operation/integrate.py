@@ -12,6 +12,7 @@ the Illinois variant of regula falsi on the step length, each trial a full step)
 import time
 
 import numpy as np
+from scipy.linalg.lapack import dgesv
 
 from ...errors import AnalysisError
 from .mechanism import Mechanism
@@ -31,6 +32,7 @@ class Stepper:
         for c, k in enumerate(mech.qdrums):
             self.wq[mech.nx + c] = mech.model.drums[k].radius
         self.M = mech.M
+        self.diag = np.arange(n) * (n + 1)         # flat indices of a (n, n) diagonal
         self.newton_tol = 1e-4 * spec.tolerance * lscale
         self.steps = self.rejected = self.newton_iterations = 0
         self.events = []
@@ -63,19 +65,18 @@ class Stepper:
             if dq_norm <= self.newton_tol:
                 # quadratic convergence: the residual at q1 is O(dq^2); the forces of the
                 # last iterate (dq away) serve the recorder and the event test
-                return q1, v1, a1, ev
-            ev = self.m.evaluate(t1, q1, v1, taut, kin)
+                return q1, v1, a1, self.m.powers(ev)
+            ev = self.m.evaluate(t1, q1, v1, taut, kin, powers=False)
             self.newton_iterations += 1
-            if not np.all(np.isfinite(ev.F)):
+            if not np.isfinite(ev.F).all():
                 return None
             Rs = M * a1 - ev.F
             J = ev.K + c2 * ev.C
-            J[np.diag_indices_from(J)] += c1 * M
-            try:
-                dq = np.linalg.solve(J, -Rs)
-            except np.linalg.LinAlgError:
-                return None
-            if not np.all(np.isfinite(dq)):
+            J.ravel()[self.diag] += c1 * M
+            # LAPACK's dgesv directly (LU with partial pivoting, as np.linalg.solve) without
+            # numpy's per-call wrapping; info > 0: J singular
+            _, _, dq, info = dgesv(J, -Rs, overwrite_a=True, overwrite_b=True)
+            if info != 0 or not np.isfinite(dq).all():
                 return None
             q1 = q1 + dq
             dq_norm = np.abs(dq * self.wq).max(initial=0.0)

@@ -71,6 +71,7 @@ class Mechanism:
         self._elements(model)
         self._drums(model)
         self._projections()
+        self._chain_setup(model)
         self._static(model)
 
     # ----------------------------------------------------------------- kinematics
@@ -120,26 +121,69 @@ class Mechanism:
         self.free_bodies = free_bodies
         self.driven_joints = driven
 
-    def body_motions(self, t):
-        """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity)."""
+    def body_motions(self, t, states=None):
+        """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity); `states`:
+        the driven joints' (s, s', s'') at t in the order of the chain, if known."""
         out = {GROUND: kernels.IDENTITY_MOTION}
-        m = self.model
-        for b in self.order:
-            p, k = self.parent[b]
-            j = m.joints[k]
-            d = self.driven_joints.get(k)
+        if states is None:
+            states = [d.motion(t) for d in self._chain_drives]
+        c = 0
+        for b, p, d, sign, hinge, K, K2, point, axis in self._chain:
             if d is None:
                 out[b] = out[p]
                 continue
-            s, ds, dds = d.motion(t)
-            sign = 1.0 if j.bodies[1] == b else -1.0    # motion of bodies[1] rel. bodies[0]
-            if j.type == "hinge":
-                jm = kernels.hinge_motion(j.axis, m.coords[j.at], sign * s, sign * ds,
-                                          sign * dds)
+            s, ds, dds = states[c]
+            c += 1
+            s, ds, dds = sign * s, sign * ds, sign * dds
+            if hinge:
+                # kernels.hinge_motion with its skew matrices K, K2 made once at setup
+                sn, cs = np.sin(s), np.cos(s)
+                R = self._I3 + sn * K + (1 - cs) * K2
+                A = cs * K + sn * K2
+                dR = ds * A
+                ddR = dds * A + ds**2 * (-sn * K + cs * K2)
+                jm = (R, dR, ddR, point - R @ point, -dR @ point, -ddR @ point)
+                # composing with the ground's identity motion changes nothing: skipped
+                par = out[p]
+                out[b] = jm if par is kernels.IDENTITY_MOTION else kernels.compose(par, jm)
             else:
-                jm = kernels.slider_motion(j.axis, sign * s, sign * ds, sign * dds)
-            out[b] = kernels.compose(out[p], jm)
+                # kernels.compose(parent, slider_motion(axis, s, ds, dds)) without the
+                # products by the slider's R = I, dR = ddR = 0 (the same numbers)
+                Rp, dRp, ddRp, pp, dpp, ddpp = out[p]
+                pj, dpj, ddpj = s * axis, ds * axis, dds * axis
+                out[b] = (Rp, dRp, ddRp, Rp @ pj + pp, dRp @ pj + Rp @ dpj + dpp,
+                          ddRp @ pj + 2 * dRp @ dpj + Rp @ ddpj + ddpp)
         return out
+
+    def _chain_setup(self, model):
+        """Constant per-body data of `body_motions` and `kinematics` (hot path)."""
+        from ...elements.bodies import skew
+        self._I3 = np.eye(3)
+        chain = []
+        for b in self.order:
+            p, k = self.parent[b]
+            j = model.joints[k]
+            d = self.driven_joints.get(k)
+            sign = 1.0 if j.bodies[1] == b else -1.0    # motion of bodies[1] rel. bodies[0]
+            hinge = j.type == "hinge"
+            K = skew(j.axis) if hinge else None
+            chain.append((b, p, d, sign, hinge, K, None if K is None else K @ K,
+                          np.asarray(model.coords[j.at], float), j.axis))
+        self._chain = chain
+        self._chain_drives = [c[2] for c in chain if c[2] is not None]
+        self._kin_key = self._kin_last = None
+        groups = []
+        for b in [GROUND] + list(self.order):
+            idx = self.kin[self.carrier[self.kin] == b]
+            if len(idx):
+                groups.append((b, idx, model.coords[idx]))
+        self._groups = groups
+        self._H = np.eye(3) - np.outer(self.up, self.up)   # horizontal projection
+        self._X0_free = model.coords[self.free]
+        self._X0_root = model.coords[self.root]
+        self._qd = np.array(self.qdrums, dtype=int)
+        self._profile_drums = [(k, d) for k, d in enumerate(self.drum_drive)
+                               if d is not None and d.kind == "profile"]
 
     def _nodes(self, model):
         nn = self.nn
@@ -309,27 +353,32 @@ class Mechanism:
         self.J = np.array([model.drums[k].reduced_inertia for k in self.qdrums])
         self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3), self.J])
+        self.invM_x = 1.0 / self.M[:self.nx]
 
     # ----------------------------------------------------------------- state at t
     def kinematics(self, t):
         """Positions, velocities, accelerations of kinematic nodes at t, and the
-        prescribed drums' (theta, omega, alpha)."""
-        mot = self.body_motions(t)
-        X0 = self.model.coords
+        prescribed drums' (theta, omega, alpha). The arrays are shared with the last
+        call when every drive is in the same state (a crane at rest between moves):
+        read them, never write."""
+        states = tuple(d.motion(t) for d in self._chain_drives)
+        drums = tuple(d.motion(t) for _, d in self._profile_drums)
+        key = (states, drums)
+        if key == self._kin_key:
+            return self._kin_last
+        mot = self.body_motions(t, states)
         X = np.zeros((self.nn, 3))
         V = np.zeros((self.nn, 3))
         A = np.zeros((self.nn, 3))
-        for b, (R, dR, ddR, p, dp, ddp) in mot.items():
-            idx = self.kin[self.carrier[self.kin] == b]
-            if len(idx):
-                Xr = X0[idx]
-                X[idx] = Xr @ R.T + p
-                V[idx] = Xr @ dR.T + dp
-                A[idx] = Xr @ ddR.T + ddp
+        for b, idx, Xr in self._groups:
+            R, dR, ddR, p, dp, ddp = mot[b]
+            X[idx] = Xr @ R.T + p
+            V[idx] = Xr @ dR.T + dp
+            A[idx] = Xr @ ddR.T + ddp
         th = np.zeros((self.nd, 3))
-        for k, d in enumerate(self.drum_drive):
-            if d is not None and d.kind == "profile":
-                th[k] = d.motion(t)
+        for (k, _), m in zip(self._profile_drums, drums):
+            th[k] = m
+        self._kin_key, self._kin_last = key, (X, V, A, th)
         return X, V, A, th
 
     def place(self, t, q, v, kin=None):
@@ -341,18 +390,15 @@ class Mechanism:
             P = (self.E @ q[:self.nx]).reshape(nf, 3)
             W = (self.E @ v[:self.nx]).reshape(nf, 3)
             if not self.sway:
-                up = self.up
-                H = np.eye(3) - np.outer(up, up)
-                X0 = self.model.coords
-                base = (X0[self.free] + X[self.root] - X0[self.root]) @ H.T
-                P = P + base
+                H = self._H
+                P = P + (self._X0_free + X[self.root] - self._X0_root) @ H.T
                 W = W + V[self.root] @ H.T
             X[self.free] = P
             V[self.free] = W
         theta, omega = th[:, 0].copy(), th[:, 1].copy()
-        nq = self.nx
-        for c, k in enumerate(self.qdrums):
-            theta[k], omega[k] = q[nq + c], v[nq + c]
+        if len(self.qdrums):
+            theta[self._qd] = q[self.nx:]
+            omega[self._qd] = v[self.nx:]
         return X, V, theta, omega
 
     def unstretched(self, theta):
@@ -360,7 +406,8 @@ class Mechanism:
         L0 = self.L0_ref.copy()
         if len(self.rope_drum):
             fac = self.end_radius / self.lam_ref[self.rope_drum]
-            np.subtract.at(L0, self.rope_drum, fac * theta[self.drum_of_end])
+            L0 -= np.bincount(self.rope_drum, weights=fac * theta[self.drum_of_end],
+                              minlength=len(L0))
         return L0
 
     def _projections(self):
@@ -376,6 +423,7 @@ class Mechanism:
             if a in where:
                 D[s_] -= self.E[3 * where[a]:3 * where[a] + 3]
         self.D = D
+        self.DtD = np.einsum("sia,sib->sab", D, D).reshape(ns, -1)   # D_s^T D_s
         nr = len(self.ropes)
         self.A = np.zeros((nr, ns))
         self.A[self.span_rope, np.arange(ns)] = 1.0
@@ -387,8 +435,12 @@ class Mechanism:
         self.Fg = self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, nf))
         self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
 
-    def evaluate(self, t, q, v, taut, kin=None, damping=True):
-        """Length: the engine's hot path (residual and tangent of one Newton iteration)
+    def evaluate(self, t, q, v, taut, kin=None, damping=True, powers=True):
+        """Forces and tangents at (t, q, v); with powers=False the power terms of the
+        energy balance are left to `powers(ev)` (the integrator needs them only for the
+        iterate it accepts).
+
+        Length: the engine's hot path (residual and tangent of one Newton iteration)
         kept in one frame to avoid call overhead per step.
         """
         kin = self.kinematics(t) if kin is None else kin
@@ -400,7 +452,8 @@ class Mechanism:
         nr = len(L)
         lam = L / L0
         fe = self.falls[:, None] * e                         # span rows f e
-        G = self.A @ np.einsum("si,sij->sj", fe, self.D)     # (nr, nx) dL/dq_x
+        eD = np.einsum("si,sij->sj", e, self.D)              # (ns, nx) e_s . D_s
+        G = self.A @ (self.falls[:, None] * eD)              # (nr, nx) dL/dq_x
         Rd = self.Rd
         dV = V[self.span_b] - V[self.span_a]
         edot = self.A @ np.einsum("si,si->s", fe, dV) + Rd @ omega   # elongation rate
@@ -410,13 +463,14 @@ class Mechanism:
         cL = np.where(taut, self.EA / L, 0.0)
         F[:nx] = self.Fg - G.T @ S
         # tangent: EA/L G^T G + sum f S / l (I - e e^T) on the span ends
-        K[:nx, :nx] = (G.T * cL) @ G + kernels.projected_tangent(
-            self.falls * S[self.span_rope] / l, e, self.D)
+        # (kernels.projected_tangent, w = f S / l, with the constant D_s^T D_s made once)
+        w = self.falls * S[self.span_rope] / l
+        K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) - (eD.T * w) @ eD
         # damping: b = psi c / (2 pi w), c = EA/L, w the rope's axial frequency now
         Sd = np.zeros(nr)
         b = np.zeros(nr)
         if damping and self.damped and nr:
-            w2 = cL * np.einsum("rj,rj->r", G, G / self.M[:nx])
+            w2 = cL * ((G * G) @ self.invM_x)
             for cc, k in enumerate(self.qdrums):
                 w2 = w2 + cL * Rd[:, k] ** 2 / self.J[cc]
             w = np.sqrt(np.maximum(w2, 0.0))
@@ -425,7 +479,8 @@ class Mechanism:
             F[:nx] -= G.T @ Sd
             C[:nx, :nx] += (G.T * b) @ G
         # drums with a coordinate: the ropes' torque -(S + Sd) R
-        dS = np.where(taut, self.EA / (self.lam_ref * L0), 0.0)     # dS/d(R theta)
+        if self.qdrums:
+            dS = np.where(taut, self.EA / (self.lam_ref * L0), 0.0)  # dS/d(R theta)
         drive_torque = np.zeros(self.nd)
         for cc, k in enumerate(self.qdrums):
             i = nx + cc
@@ -447,18 +502,6 @@ class Mechanism:
             drive_torque[k] = tq
             F[i] += tq
             C[i, i] -= dtq
-        # energy carried onto (off) the drums with the wound rope: the drum's work
-        # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
-        # (S lambda - w), w = EA (lambda ln lambda - lambda + 1)
-        if len(self.rope_drum):
-            wden = np.where(taut, self.EA * (lam * np.log(lam) - lam + 1), 0.0)
-            P_wound = float(((S - (S * lam - wden) / self.lam_ref) * (Rd @ omega)).sum())
-        else:
-            P_wound = 0.0
-        # power fed through kinematic nodes (moving sheaves, dead ends on bodies)
-        Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
-            np.where(self.kin_a[:, None], V[self.span_a], 0.0)
-        rVk = self.A @ np.einsum("si,si->s", fe, Vk)
         # springs
         N = np.zeros(len(self.sp_k))
         if len(self.sp_k):
@@ -478,11 +521,41 @@ class Mechanism:
                 F[:nx] -= Gs.T @ Nd
                 C[:nx, :nx] += (Gs.T * bs) @ Gs
                 N = N + Nd
-                Pk = np.einsum("rij,ij->r", rs[:, self.kin], V[self.kin])
-                P_sp_kin, P_sp_diss = float(N @ Pk), float(Nd @ ddot)
+                spring = (rs, float(Nd @ ddot))
             else:
-                Pk = np.einsum("rij,ij->r", rs[:, self.kin], V[self.kin])
-                P_sp_kin, P_sp_diss = float(N @ Pk), 0.0
+                spring = (rs, 0.0)
+        else:
+            spring = None
+        ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
+                  None, None, None)
+        ev._ctx = (fe, lam, taut, spring)
+        if powers:
+            self.powers(ev)
+        return ev
+
+    def powers(self, ev):
+        """Fill the power terms of `ev` (W) and the guided loads' kinetic energy (J)."""
+        if ev.P_drive is not None:
+            return ev
+        fe, lam, taut, spring = ev._ctx
+        S, Sd, V, omega, Rd = ev.S, ev.Sd, ev.V, ev.omega, self.Rd
+        # energy carried onto (off) the drums with the wound rope: the drum's work
+        # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
+        # (S lambda - w), w = EA (lambda ln lambda - lambda + 1)
+        if len(self.rope_drum):
+            wden = np.where(taut, self.EA * (lam * np.log(lam) - lam + 1), 0.0)
+            P_wound = float(((S - (S * lam - wden) / self.lam_ref) * (Rd @ omega)).sum())
+        else:
+            P_wound = 0.0
+        # power fed through kinematic nodes (moving sheaves, dead ends on bodies)
+        Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
+            np.where(self.kin_a[:, None], V[self.span_a], 0.0)
+        rVk = self.A @ np.einsum("si,si->s", fe, Vk)
+        # springs: the power fed through kinematic nodes and the dashpots' dissipation
+        if spring is not None:
+            rs, P_sp_diss = spring
+            Pk = np.einsum("rij,ij->r", rs[:, self.kin], V[self.kin])
+            P_sp_kin = float(ev.N @ Pk)
         else:
             P_sp_kin = P_sp_diss = 0.0
         # power of the drives: kinematic nodes pulled by the ropes and springs, prescribed
@@ -492,15 +565,16 @@ class Mechanism:
             d = self.drum_drive[k]
             if d is not None and d.kind == "profile":
                 P += float(Rd[:, k] @ (S + Sd)) * omega[k]
-        P += float(drive_torque @ omega)
+        P += float(ev.drive_torque @ omega)
         # loads without sway are guided horizontally with their carrier: the guidance
         # does the work of their horizontal kinetic energy (the ropes hang vertically)
         T_guided = 0.0
         if not self.sway and len(self.free):
             Vh = V[self.free] - np.outer(V[self.free] @ self.up, self.up)
             T_guided = 0.5 * float(self.free_mass @ np.einsum("ij,ij->i", Vh, Vh))
-        return Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
-                    P, float(Sd @ edot) + P_sp_diss, P_wound, T_guided)
+        ev.P_drive, ev.P_diss = P, float(Sd @ ev.edot) + P_sp_diss
+        ev.P_wound, ev.T_guided = P_wound, T_guided
+        return ev
 
     def energy(self, ev, taut):
         """Kinetic, gravity potential and elastic energy (J)."""

@@ -156,7 +156,10 @@ class Recorder:
         self.max_terms = np.zeros(3)
 
     def _force_rate(self, ev):
-        return np.where(ev.S > 0, self.m.EA / ev.L, 0.0) * ev.edot
+        rate = getattr(ev, "_rate", None)        # each state serves two steps
+        if rate is None:
+            rate = ev._rate = np.where(ev.S > 0, self.m.EA / ev.L, 0.0) * ev.edot
+        return rate
 
     def start(self, t, q, v, a, ev, taut):
         self.E0 = self.m.energy(ev, taut)
