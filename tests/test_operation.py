@@ -3,6 +3,8 @@ the linear core at the static state, the conical pendulum of steady slewing, the
 variable-length pendulum (Bessel functions), the residual sway of a trapezoidal trolley
 move, the axial frequency of a mass on a rope being paid out, energy conservation."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import scipy.linalg as sla
@@ -18,7 +20,7 @@ from cranefe.analysis.operation.mechanism import Mechanism
 from cranefe.analysis.operation.scene import parse
 
 G = 9.81
-HOIST = "/work/wt-op/models/two_mass_hoist.yaml"
+HOIST = str(Path(__file__).resolve().parents[1] / "models" / "two_mass_hoist.yaml")
 
 SLEWING = """cranefe: 1
 name: slewing test crane
