@@ -73,3 +73,27 @@ def _tip_force(s):
     f = np.zeros(s.dofs.T.shape[0])
     f[_tip_z(s)] = 1.0
     return f
+
+
+def test_element_frequency_weighting_is_one_over_w_squared():
+    """element_frequencies picks, per element, the mode with the largest c (r v_j)^2 / w_j^2
+    (the share of the element's strain energy; docs/damping.md). Hand-made modes at
+    w = (1, 2) rad/s (the function takes V and w as given): element 1 elongates 1 and
+    sqrt 6 in them, shares 1 and 6/4 -> w = 2 (a weight 1/w^3 gives 1 and 6/8 -> w = 1);
+    element 2 elongates 1 and sqrt 3: shares 1 and 3/4 -> w = 1 (no weighting gives 3 -> 2);
+    element 3 is not strained by either mode and gets the lowest frequency. Beams: the
+    same numbers as energies v^T K_e v of two elements, K_e = diag(1, 0) and diag(0, 1)."""
+    from types import SimpleNamespace as NS
+
+    from cranefe.analysis.damping import element_frequencies
+    V = np.array([[1.0, math.sqrt(6.0)], [1.0, math.sqrt(3.0)], [0.0, 0.0]])
+    omega = np.array([1.0, 2.0])
+    system = NS(dofs=NS(T=np.eye(3)), springs=NS(R=np.eye(3), c=np.array([5.0, 0.5, 1.0])),
+                beams=NS(idx=np.array([[0, 1], [0, 1]]),
+                         mat=np.array([np.diag([1.0, 0.0]), np.diag([0.0, 1.0])])))
+    rows, beams = element_frequencies(system, V, omega)
+    assert rows.tolist() == [2.0, 1.0, 1.0]
+    assert beams.tolist() == [2.0, 1.0]
+    system = NS(dofs=NS(T=np.eye(3)), springs=NS(R=np.eye(3), c=np.ones(3)), beams=None)
+    rows, beams = element_frequencies(system, V, omega)
+    assert rows.tolist() == [2.0, 1.0, 1.0] and beams.shape == (0,)
