@@ -1,7 +1,7 @@
 """Value tests that kill the mutants of cranefe/elements/ropes.py that the fast tests left
 alive (tools/mutation.py ropes; docs/testing.md, "Mutation testing").
 
-One span from a = (0, 0, 0) to b = (3, 0, 4) (l = 5, e = (0.6, 0, 0.8), a 3-4-5 triangle, so
+One span from a = (1, 2, -1) to b = a + (3, 0, 4) (l = 5, e = (0.6, 0, 0.8), a 3-4-5 triangle, so
 every geometric number is exact in binary up to one rounding), f = 2 falls, EA = 1000 N,
 L0 = 9 m: L = f l = 10 m, S = EA ln(L / L0) = 1000 ln(10/9) N, c = dS/dL = EA / L = 100 N/m.
 The tangent stiffness is written out by hand: c r r^T with r = f (-e, e), plus the span's
@@ -17,7 +17,7 @@ from cranefe.elements.ropes import (hencky_energy, hencky_tension, projected_tan
                                     rope_force, rope_mass, rope_spans, rope_state,
                                     spring_state)
 
-X = np.array([[0.0, 0.0, 0.0], [3.0, 0.0, 4.0]])
+X = np.array([[1.0, 2.0, -1.0], [4.0, 2.0, 3.0]])   # a = (1, 2, -1), b = a + (3, 0, 4)
 E = np.array([0.6, 0.0, 0.8])
 A, B, F, ROPE = np.array([0]), np.array([1]), np.array([2.0]), np.array([0])
 EA, L0 = np.array([1000.0]), np.array([9.0])
@@ -79,13 +79,13 @@ def test_rope_force_keeps_the_stiffness_of_a_rope_with_a_small_tension():
 
 
 def test_spring_state_of_one_inclined_spring_by_hand():
-    """N = N_ref + k (d - d_ref) = 10 + 200 (5 - 4) = 210 N; K = k e e^T + (N/d)(I - e e^T)
+    """N = N_ref + k (d - d_ref) = 10 + 200 (5 - 3) = 410 N; K = k e e^T + (N/d)(I - e e^T)
     on [[1, -1], [-1, 1]]."""
-    d, N, r, K = spring_state(X, A, B, np.array([200.0]), np.array([4.0]),
+    d, N, r, K = spring_state(X, A, B, np.array([200.0]), np.array([3.0]),
                               np.array([10.0]))
-    assert np.allclose(d, [5.0], rtol=RTOL) and np.allclose(N, [210.0], rtol=RTOL)
+    assert np.allclose(d, [5.0], rtol=RTOL) and np.allclose(N, [410.0], rtol=RTOL)
     assert np.allclose(r[0], [-E, E], rtol=RTOL, atol=0.0)
-    K_ex = _blocks(200.0 * np.outer(E, E) + 210.0 / 5.0 * (np.eye(3) - np.outer(E, E)))
+    K_ex = _blocks(200.0 * np.outer(E, E) + 410.0 / 5.0 * (np.eye(3) - np.outer(E, E)))
     assert np.allclose(K, K_ex, rtol=RTOL, atol=1e-12)
 
 
