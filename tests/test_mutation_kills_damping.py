@@ -97,3 +97,25 @@ def test_element_frequency_weighting_is_one_over_w_squared():
     system = NS(dofs=NS(T=np.eye(3)), springs=NS(R=np.eye(3), c=np.ones(3)), beams=None)
     rows, beams = element_frequencies(system, V, omega)
     assert rows.tolist() == [2.0, 1.0, 1.0] and beams.shape == (0,)
+
+
+SPRING = """cranefe: 1
+plane: xz
+gravity: [0, 0, 0]
+nodes: {G: [0, 0, 0], N0: [1, 0, 0]}
+ground: [G]
+masses: {N0: 10}
+springs:
+  - {name: k0, type: axial, nodes: [G, N0], stiffness: 1000, psi: 0.2}
+effects: {sway: false}
+"""
+
+
+def test_spring_rows_use_their_k1():
+    """One axial spring k = 1000 N/m, psi = 0.2, on its one free coordinate: K = [[1000]],
+    K_psi = [[200]], B(w = 5, k1 = 2) = 200 / (2 pi 5 2) (eq. 13 per spring row)."""
+    s = assemble(load("spring.yaml", SPRING))
+    assert np.allclose(s.K.toarray(), [[1000.0]], rtol=1e-14)
+    assert np.allclose(psi_stiffness(s).toarray(), [[200.0]], rtol=1e-14)
+    B = damping_matrix(s, 5.0, k1=2.0).toarray()
+    assert np.allclose(B, [[200.0 / (2 * math.pi * 5.0 * 2.0)]], rtol=1e-14)
