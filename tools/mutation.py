@@ -42,7 +42,8 @@ PRESETS = {
                       ["tests/test_values.py", "tests/test_damping.py",
                        "tests/test_mutation_kills_modal.py"]),
     "condense": ("cranefe/condense.py",
-                 ["tests/test_closed_forms.py", "tests/test_audit_numerics.py"]),
+                 ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
+                  "tests/test_mutation_kills_condense.py"]),
     "sdof": ("cranefe/analysis/loads/sdof.py",
              ["tests/test_loads_standard.py", "tests/test_mutation_kills_loads.py"]),
 }
