@@ -1,0 +1,129 @@
+"""Mutation testing of one cranefe formula module at a time (issue 20).
+
+Runs mutmut 3 (``pip install -e .[mutation]``) over ONE module with the fast tests that
+cover it, in a scratch copy of the worktree (mutmut writes a ``mutants/`` tree and its
+config must name the module, so nothing in the checkout is touched), then prints the
+counts, the score and the diff of every surviving mutant.
+
+    python tools/mutation.py ropes            # a preset below
+    python tools/mutation.py cranefe/condense.py tests/test_condense.py --timeout 30
+    python tools/mutation.py ropes --keep /tmp/mut-ropes   # keep the scratch copy
+
+score = killed / (killed + survived + timed out); "timeout" is a mutant whose tests ran
+longer than the per-mutant limit (mutmut: 15 x the clean run time + ``--timeout`` s),
+usually a loop made endless, and counts as not killed here to stay conservative.
+Runs one worker at a time by default (the machine has 2 cores shared with others).
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+# module -> the fast tests that exercise it (seconds each, no slow marker)
+PRESETS = {
+    "ropes": ("cranefe/elements/ropes.py",
+              ["tests/test_kernels.py", "tests/test_closed_forms.py",
+               "tests/test_exact_potential.py", "tests/test_mutation_kills_ropes.py"]),
+    "bodies": ("cranefe/elements/bodies.py",
+               ["tests/test_kernels.py", "tests/test_closed_forms.py",
+                "tests/test_mutation_kills_bodies.py"]),
+    "damping_element": ("cranefe/analysis/damping/element.py",
+                        ["tests/test_values.py", "tests/test_damping.py",
+                         "tests/test_mutation_kills_damping.py"]),
+    "damping_modal": ("cranefe/analysis/damping/modal.py",
+                      ["tests/test_values.py", "tests/test_damping.py",
+                       "tests/test_mutation_kills_modal.py"]),
+    "condense": ("cranefe/condense.py",
+                 ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
+                  "tests/test_mutation_kills_condense.py"]),
+    "sdof": ("cranefe/analysis/loads/sdof.py",
+             ["tests/test_loads_standard.py", "tests/test_mutation_kills_loads.py"]),
+}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("module", help="a preset name or a path such as cranefe/condense.py")
+    ap.add_argument("tests", nargs="*", help="test files (default: the preset's)")
+    ap.add_argument("--timeout", type=float, default=20.0,
+                    help="seconds added to 15 x the clean run time per mutant")
+    ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--keep", type=Path, help="scratch directory to keep (default: a temp dir)")
+    args = ap.parse_args(argv)
+
+    if args.module in PRESETS:
+        module, tests = PRESETS[args.module]
+        tests = args.tests or tests
+    else:
+        module, tests = args.module, args.tests
+    if not tests:
+        ap.error("name the test files that cover the module")
+
+    work = args.keep or Path(tempfile.mkdtemp(prefix="cranefe-mut-"))
+    if work.exists():
+        shutil.rmtree(work)
+    work.mkdir(parents=True)
+    shutil.copytree(ROOT / "cranefe", work / "cranefe",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copytree(ROOT / "tests", work / "tests",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    for extra in ("examples", "models", "results", "docs", "README.md"):
+        src = ROOT / extra
+        if src.is_dir():
+            shutil.copytree(src, work / extra, ignore=shutil.ignore_patterns("__pycache__"))
+        elif src.is_file():
+            shutil.copy(src, work / extra)
+    # a pyproject without [tool.mutmut] would shadow setup.cfg only if it had one; keep the
+    # pytest settings (markers) by copying it and adding the mutmut section to setup.cfg
+    shutil.copy(ROOT / "pyproject.toml", work / "pyproject.toml")
+    copies = "\n    ".join(["tests", "examples", "models", "results", "docs"])
+    (work / "setup.cfg").write_text(
+        "[mutmut]\n"
+        f"only_mutate = {module}\n"
+        "source_paths = cranefe\n"
+        f"pytest_add_cli_args_test_selection =\n    " + "\n    ".join(tests) + "\n"
+        f"also_copy =\n    {copies}\n"
+        f"timeout_constant = {args.timeout}\n"
+        "use_git_change_detection = false\n")
+
+    run = subprocess.run([sys.executable, "-m", "mutmut", "run",
+                          "--max-children", str(args.workers)], cwd=work)
+    res = subprocess.run([sys.executable, "-m", "mutmut", "results", "--all", "true"],
+                         cwd=work, capture_output=True, text=True)
+    counts: dict[str, list[str]] = {}
+    for line in res.stdout.splitlines():
+        m = re.match(r"\s*(\S+): (.+)$", line)
+        if m:
+            counts.setdefault(m.group(2).strip(), []).append(m.group(1))
+    total = sum(len(v) for v in counts.values())
+    killed = len(counts.get("killed", []))
+    surv = counts.get("survived", [])
+    tout = counts.get("timeout", [])
+    print(f"\n== {module} with {' '.join(tests)}")
+    print("mutants:", total, {k: len(v) for k, v in counts.items()})
+    denom = killed + len(surv) + len(tout)
+    if denom:
+        print(f"score: {killed}/{denom} = {killed / denom:.1%}")
+    for name in surv + tout:
+        show = subprocess.run([sys.executable, "-m", "mutmut", "show", name],
+                              cwd=work, capture_output=True, text=True)
+        diff = [ln for ln in show.stdout.splitlines()
+                if ln.startswith(("+", "-")) and not ln.startswith(("+++", "---"))]
+        print(f"-- {name}")
+        print("\n".join("   " + ln for ln in diff))
+    if not args.keep:
+        shutil.rmtree(work, ignore_errors=True)
+    return run.returncode
+
+
+if __name__ == "__main__":
+    sys.exit(main())
