@@ -2,7 +2,6 @@
 independently written assemblies (the floor script, OpenSeesPy when installed)."""
 
 import json
-import os
 import subprocess
 import sys
 

@@ -1,13 +1,11 @@
 """Property-based tests (hypothesis): invariants of the physics, and input fuzzing of the
 model loader (any YAML gives a result or a clear error, never a traceback)."""
 
-import copy
 import os
 import re
 from dataclasses import replace
 
 import numpy as np
-import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st

@@ -1,7 +1,6 @@
 """Hard cases stay numerically stable: every case has a 50-digit reference (mpmath) or a
 closed form, and a tolerance with its reason. Run alone with ``pytest -m stability``."""
 
-import os
 from dataclasses import replace
 
 import mpmath as mp
@@ -9,7 +8,6 @@ import numpy as np
 import pytest
 
 from cranefe.system import assemble
-from cranefe.errors import ModelError
 from cranefe.model import load
 from cranefe.analysis.modal import modes
 

@@ -240,7 +240,7 @@ def check_shaping(files):
     forms 4 asin(0.05)/pi (ZV), 4 asin(sqrt 0.05)/pi (ZVD), 2 - 2 acos((3V-1)/(1+V))/pi
     (EI) to the study's grid step 1e-5; the two-mode shaper cancels both modes."""
     rows = {r["shaper"]: r for r in read(files["shaping_cost.csv"])}
-    w, a, l = np.sqrt(G / 20.0), 0.5, 20.0
+    w, a = np.sqrt(G / 20.0), 0.5
     T = 2 * np.pi / w
     for name, f in (("ZV", 0.5), ("ZVD", 1.0), ("ZVDD", 1.5), ("EI", 1.0)):
         assert num(rows[name]["shaper_duration_s"]) == pytest.approx(f * T, rel=CSV_RTOL)

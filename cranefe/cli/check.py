@@ -12,7 +12,6 @@ def add_arguments(p):
 
 
 def run(args):
-    from dataclasses import replace
 
     from ..system import assemble
     from ..condense import DENSE_MAX, condense

@@ -4,7 +4,6 @@ Runs the studies listed in ACCURACY (each writes its CSV and PNG; see docs/accur
 with a progress bar, then regenerates docs/validation.md from the validation cases.
 """
 
-import os
 import time
 from importlib import import_module
 

@@ -30,6 +30,7 @@ import numpy as np
 import scipy.optimize as so
 
 from .. import cases
+from ..analysis.loads.standard import HOISTING_CLASSES  # EN 13001-2 Table 2
 from ..model import load
 from ._common import pyplot, save, write_csv
 
@@ -37,8 +38,6 @@ DESCRIPTION = "transients: peak rope force error vs time step and retained modes
 MODEL = os.path.join(os.path.dirname(__file__), "..", "..", "models", "two_mass_hoist.yaml")
 TORQUE = 10200.0          # N m at the drum, 1.6 x the holding torque
 RAMP = 0.5               # s, run-up of the "ramped" drive in the phi2 table
-HOISTING_CLASSES = {"HC1": (1.05, 0.17), "HC2": (1.10, 0.34), "HC3": (1.15, 0.51),
-                    "HC4": (1.20, 0.68)}   # EN 13001-2: phi2,min and beta2 [s/m]
 CRANES = (("two_mass_hoist.yaml", "H"), ("hammerhead_tower_crane.yaml", "HOOK"),
           ("luffing_tower_crane.yaml", "HOOK"))
 KEYS = ["case", "method", "static_correction", "modes", "time_step_s", "dofs",
@@ -197,7 +196,7 @@ def phi2_table(outdir, quick=False):
                     row[f"phi2_{drive}"] = float(r.dynamic_factor[k])
                     row["lift_off_s" if drive == "rigid" else "lift_off_ramped_s"] = \
                         float(r.lift_off_time)
-                for c, (p0, b) in HOISTING_CLASSES.items():
+                for c, (b, p0) in HOISTING_CLASSES.items():   # beta2, phi2,min
                     row[f"EN_{c}"] = p0 + b * v
                 rows.append(row)
     return write_csv(outdir, "transient_phi2.csv", rows)
