@@ -56,6 +56,9 @@ def test_renaming_nodes(data):
     used = set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", text))
     if set(fresh) & (used - set(names)):
         return                          # would collide with another name or key
+    if any(not isinstance(yaml.safe_load(f), str) for f in fresh):
+        return                          # YAML reads it as a boolean or null (`No`, `off`,
+                                        # `null`): not a name unless quoted, and refused
     tmp = {n: f"@@{k}@@" for k, n in enumerate(names)}
     renamed = text
     for n, t in tmp.items():           # whole-word replacement, two steps (no chains)
