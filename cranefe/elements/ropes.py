@@ -176,11 +176,17 @@ def rope_state(x, span_a, span_b, falls, rope, EA, L0, extra=None, taut=None):
     K = (rf.T * c) @ rf
     # span geometric blocks (f S / l)(I - e e^T)
     g = (falls * S[rope] / l)[:, None, None] * (np.eye(3) - e[:, :, None] * e[:, None, :])
-    K4 = K.reshape(n, 3, n, 3)
-    for (i, j, sgn) in ((span_a, span_a, 1.0), (span_b, span_b, 1.0),
-                        (span_a, span_b, -1.0), (span_b, span_a, -1.0)):
-        np.add.at(K4, (i, slice(None), j, slice(None)), sgn * g)
+    _add_span_blocks(K, span_a, span_b, g)
     return L, S, r, K
+
+
+def _add_span_blocks(K, a, b, g):
+    """Add span blocks g (ns, 3, 3) of K (3n, 3n) as [[g, -g], [-g, g]] on the
+    translations of each span's end points a, b (ns,)."""
+    n = K.shape[0] // 3
+    K4 = K.reshape(n, 3, n, 3)
+    for (i, j, sgn) in ((a, a, 1.0), (b, b, 1.0), (a, b, -1.0), (b, a, -1.0)):
+        np.add.at(K4, (i, slice(None), j, slice(None)), sgn * g)
 
 
 def spring_state(x, node_a, node_b, k, d_ref, N_ref):
@@ -200,8 +206,5 @@ def spring_state(x, node_a, node_b, k, d_ref, N_ref):
     rf = r.reshape(m, 3 * n)
     K = (rf.T * k) @ rf
     g = (N / d)[:, None, None] * (np.eye(3) - e[:, :, None] * e[:, None, :])
-    K4 = K.reshape(n, 3, n, 3)
-    for (i, j, sgn) in ((node_a, node_a, 1.0), (node_b, node_b, 1.0),
-                        (node_a, node_b, -1.0), (node_b, node_a, -1.0)):
-        np.add.at(K4, (i, slice(None), j, slice(None)), sgn * g)
+    _add_span_blocks(K, node_a, node_b, g)
     return d, N, r, K

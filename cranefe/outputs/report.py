@@ -5,10 +5,8 @@ import math
 
 import numpy as np
 
-
-def _num(x):
-    x = float(x)
-    return x if math.isfinite(x) else None
+from ..analysis.jsonable import num as _num
+from ..analysis.jsonable import timings
 
 
 def modes_document(result, comparison=None):
@@ -72,7 +70,7 @@ def damping_document(result, modal=None):
     return {"model": result.model_name, "effects": result.effects, "method": result.method,
             "dofs": modal.dofs if modal is not None else None,
             "quasi_cyclic": list(modal.quasi_cyclic) if modal is not None else [],
-            "modes": modes, "timings_s": {k: round(v, 6) for k, v in result.timings.items()},
+            "modes": modes, "timings_s": timings(result.timings),
             "warnings": list(result.warnings)}
 
 

@@ -11,6 +11,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..jsonable import num as _num
+from ..jsonable import timings
+
 MAX_EVENTS = 100
 
 
@@ -25,11 +28,6 @@ class _Sample:
     theta: np.ndarray
     omega: np.ndarray
     drive_torque: np.ndarray
-
-
-def _num(x):
-    x = float(x)
-    return x if np.isfinite(x) else None
 
 
 @dataclass
@@ -109,7 +107,7 @@ class OperationResult:
             "energy_J": {k: _num(v) for k, v in self.energy.items()},
             "events": [f"{t:.6g} s: {w}" for t, w in self.events[:MAX_EVENTS]],
             "events_total": len(self.events),
-            "timings_s": {k: round(v, 6) for k, v in self.timings.items()},
+            "timings_s": timings(self.timings),
             "warnings": list(self.warnings),
             "status": self.status, "message": self.message,
         }
