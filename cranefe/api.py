@@ -66,10 +66,16 @@ def damping(model, method=None, count=None, effects=None):
 
 
 def simulate(scene, progress=None):
-    """Integrate a transient scene (``analysis: {type: transient}``) -> `TransientResult`
-    with time histories, peak rope forces, dynamic factors and the energy balance."""
+    """Integrate a scene, as `cranefe simulate` does: a transient scene (``analysis: {type:
+    transient}``) -> `TransientResult` (time histories, peak rope forces, dynamic factors,
+    energy balance); an operation scene (``type: operation``, large motions;
+    docs/operations.md) -> `OperationResult`."""
+    model = _model(scene)
+    if model.analysis.get("type") == "operation":
+        from .analysis.operation.integrate import simulate as _operation
+        return _operation(model, progress=progress)
     from .analysis.transient.integrate import simulate as _simulate
-    return _simulate(_model(scene), progress=progress)
+    return _simulate(model, progress=progress)
 
 
 def luff(scene, sensitivity=True):
