@@ -161,3 +161,20 @@ effects: {{structure: flexible}}
     path.write_text(text)
     assert main(["modes", str(path)]) == 1
     assert "not a stable equilibrium" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("solver", ["dense", "sparse"])
+@pytest.mark.parametrize("factor", [1.001, 1.1])
+def test_column_just_past_its_self_weight_buckling_is_an_error(model_from, solver, factor):
+    # w^2 of the first mode falls linearly to zero at the critical weight (Greenhill,
+    # test_structures), so 0.1 % past it w^2 = -1.6e-3 s^-2: far below the round-off of
+    # the element energies (1e-13 of them), but below 1e-9 of the largest w^2 of the mesh
+    # too, which once let it pass as a 0 Hz mode
+    from cranefe.analysis.modal import modes as solve
+    from cranefe.cases import self_weight_column
+    from cranefe.errors import AnalysisError
+    from cranefe.system import assemble
+    crit = self_weight_column()[1]["critical"]
+    model = model_from(self_weight_column(parameter=crit * factor)[0])
+    with pytest.raises(AnalysisError, match="not a stable equilibrium"):
+        solve(model, count=3, solver=solver, system=assemble(model))

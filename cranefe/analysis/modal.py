@@ -137,8 +137,9 @@ def _dense(system, count):
     factor = element_factor(system)
     (lam, Y), graded = _eigh_accurate(c, factor)
     _check_stable(lam, c.quasi_cyclic)
-    lam = np.maximum(lam, 0.0)
     shapes = np.hstack([c.rigid, c.recover @ Y])
+    _check_negative(lam, factor, shapes[:, c.rigid.shape[1]:])
+    lam = np.maximum(lam, 0.0)
     omega = np.concatenate([np.zeros(c.rigid.shape[1]), np.sqrt(lam)])
     rigid = np.arange(len(omega)) < c.rigid.shape[1]
     rigid, qc = _zero_to_roundoff(factor, shapes, rigid, c.quasi_cyclic,
@@ -208,10 +209,28 @@ def _eigh_accurate(c, factor):
 
 def _check_stable(lam, qc):
     if len(lam) and lam[0] < -1e-9 * max(abs(lam[-1]), 1e-300):
-        raise AnalysisError(
-            f"the reference geometry is not a stable equilibrium: a mode has w^2 = "
-            f"{lam[0]:.4g} s^-2 < 0 (e.g. a body balanced above its hinge with too weak a "
-            "spring, or a compressed rope); check the supports and the geometry")
+        _unstable(lam[0])
+
+
+def _unstable(w2):
+    raise AnalysisError(
+        f"the reference geometry is not a stable equilibrium: a mode has w^2 = "
+        f"{w2:.4g} s^-2 < 0 (e.g. a body balanced above its hinge with too weak a "
+        "spring, a compressed rope or a member past its buckling load); check the "
+        "supports, the loads and the geometry")
+
+
+def _check_negative(lam, factor, shapes):
+    """A w^2 below zero that is not round-off of its element terms (`element_energy`):
+    the check above is relative to the largest w^2, which a fine mesh makes so large that
+    a column 10 % past its buckling load passed as a 0 Hz mode."""
+    neg = np.flatnonzero(lam < 0)
+    if not len(neg):
+        return
+    w2, zero = element_energy(factor, shapes[:, neg])
+    bad = (w2 < 0) & ~zero
+    if np.any(bad):
+        _unstable(w2[bad].min())
 
 
 def _sparse(system, k):
@@ -255,7 +274,10 @@ def _sparse(system, k):
     if len(b):
         X[b] = -Kbb.solve(Kab.T @ Xa)
     # zero to round-off of K - sigma M, or of the element stiffness the mode meets
-    rigid = (lam < 1e-10 * ratio) | element_energy(element_factor(system), X)[1]
+    w2, zero = element_energy(element_factor(system), X)
+    if np.any((w2 < 0) & (lam < 0) & ~zero):
+        _unstable(lam.min())
+    rigid = (np.abs(lam) < 1e-10 * ratio) | zero
     _check_stable(np.where(rigid, 0, lam), ())
     lab = system.dofs.labels
     qc = tuple(lab[a[np.argmax(np.abs(Xa[:, i]))]] for i in np.flatnonzero(rigid))
