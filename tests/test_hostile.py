@@ -595,3 +595,12 @@ def test_confine_covers_mesh_files(tmp_path, capsys):
     (inner / "g.yaml").write_text(text)
     assert cli(capsys, "check", inner / "g.yaml")[0] == 0
     bad(capsys, "--confine", "check", inner / "g.yaml", says=("mesh", "outside the folder"))
+
+
+@pytest.mark.parametrize("value", ['"' + "x" * 5000 + '"', "[" + ", ".join(["1"] * 3000) + "]"])
+def test_a_huge_wrong_value_is_not_echoed_whole(tmp_path, capsys, value):
+    path = tmp_path / "big.yaml"
+    path.write_text(f"cranefe: 1\nnodes: {{A: [0, 0, 0], B: [0, 0, {value}]}}\n")
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "nodes.B[2]" in err and "characters" in err and len(err) < 400

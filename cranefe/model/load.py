@@ -150,7 +150,7 @@ def _effects(raw, base, r, entry):
                                     why=": elements per fall of every rope with mass")
         else:
             if value not in EFFECT_CHOICES[key]:
-                raise ModelError(f"{value!r} is not one of {', '.join(EFFECT_CHOICES[key])}",
+                raise ModelError(f"{_echo(value)} is not one of {', '.join(EFFECT_CHOICES[key])}",
                                  r.file, e)
             values[key] = value
     return Effects(**values)
@@ -172,7 +172,7 @@ class _Reader:
                       "'cranefe: 1'")
         v = data["cranefe"]
         if isinstance(v, bool) or v != 1:
-            self.fail("cranefe", f"format version must be 1 (found {v!r}); this cranefe "
+            self.fail("cranefe", f"format version must be 1 (found {_echo(v)}); this cranefe "
                       "reads format 1: start the file with 'cranefe: 1'")
 
     def keys(self, d, entry, allowed, required=()):
@@ -197,7 +197,7 @@ class _Reader:
         if isinstance(v, bool) or not isinstance(v, (int, float)):
             hint = "; write a plain number in SI units, e.g. 2.0e7, without quotes, or " \
                 "a number with its unit, e.g. '110 MN'" if isinstance(v, str) else ""
-            self.fail(entry, f"must be a number, not {_kind(v)} {v!r}{hint}")
+            self.fail(entry, f"must be a number, not {_kind(v)} {_echo(v)}{hint}")
         v = math.inf if isinstance(v, int) and abs(v) > MAX_NUMBER else float(v)
         if not math.isfinite(v) or not (v == 0 or MIN_NUMBER <= abs(v) <= MAX_NUMBER):
             self.fail(entry, f"must be a finite number of magnitude {MIN_NUMBER:g} .. "
@@ -214,7 +214,7 @@ class _Reader:
             if isinstance(v, float) and v.is_integer():
                 v = int(v)
             else:
-                self.fail(entry, f"must be a whole number, not {_kind(v)} {v!r}")
+                self.fail(entry, f"must be a whole number, not {_kind(v)} {_echo(v)}")
         if minimum is not None and v < minimum:
             self.fail(entry, f"must be at least {minimum} (found {v})")
         if maximum is not None and v > maximum:
@@ -223,12 +223,12 @@ class _Reader:
 
     def boolean(self, v, entry):
         if not isinstance(v, bool):
-            self.fail(entry, f"must be true or false, not {v!r}")
+            self.fail(entry, f"must be true or false, not {_echo(v)}")
         return v
 
     def vector(self, v, entry, n=3):
         if not isinstance(v, (list, tuple)) or len(v) != n:
-            self.fail(entry, f"must be a list of {n} numbers, not {v!r}")
+            self.fail(entry, f"must be a list of {n} numbers, not {_echo(v)}")
         return np.array([self.number(x, f"{entry}[{i}]") for i, x in enumerate(v)])
 
     def unit(self, v, entry):
@@ -240,7 +240,7 @@ class _Reader:
 
     def name(self, v, entry):
         if not isinstance(v, str) or not v:
-            self.fail(entry, f"must be a name (text), not {_kind(v)} {v!r}")
+            self.fail(entry, f"must be a name (text), not {_kind(v)} {_echo(v)}")
         return v
 
     def listing(self, v, entry, min_len=0):
@@ -266,6 +266,13 @@ def _short(v):
     not echoed whole)."""
     s = str(v)
     return s if len(s) <= 24 else f"{s[:6]}...({len(s)} digits)"
+
+
+def _echo(v):
+    """A value for a message, at most a few dozen characters: a wrong value is shown,
+    not a whole megabyte of text pasted into a number."""
+    r = repr(v)
+    return r if len(r) <= 60 else f"{r[:40]}... ({len(r)} characters)"
 
 
 def _kind(v):
@@ -992,7 +999,7 @@ def _supports(data, c, ground):
             e = f"{e}.fix"
         comps = SUPPORT_SHORTHANDS.get(v) if isinstance(v, str) else r.listing(v, e, 1)
         if comps is None:
-            r.fail(e, f"{v!r} is not a list of components ({', '.join(SUPPORT_COMPONENTS)}), "
+            r.fail(e, f"{_echo(v)} is not a list of components ({', '.join(SUPPORT_COMPONENTS)}), "
                    "'pinned' or 'fixed'")
         for k, comp in enumerate(comps):
             if comp not in SUPPORT_COMPONENTS or list(comps).count(comp) > 1:
