@@ -16,12 +16,13 @@ the confinement of the paths that files name (docs/security.md).
 """
 
 import contextlib
+import errno
 import os
 import re
 import shutil
 import stat
 
-from .errors import ModelError
+from .errors import AnalysisError, ModelError
 
 _READ = {}               # absolute paths of the files read in this run, in order
 _CONFINE = [False]       # set by --confine; the environment variable works as well
@@ -269,13 +270,17 @@ def _replaceable(target, shown):
                          "cranefe replaces only regular files: name a file", shown)
 
 
+_FULL = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO}   # exit 1, not a user's mistake
+
+
 @contextlib.contextmanager
 def atomic(path, suffix=""):
     """Yield a temporary path beside `path`; when the block ends without an exception,
     rename it over `path` (a symbolic link is written through, to the file it names).
 
     `suffix` is appended to the temporary name for writers that choose the format by
-    the extension. OS errors (no space, no permission) become one-line `ModelError`s."""
+    the extension. OS errors become one-line messages: a full disk (or quota, or an I/O
+    error) an `AnalysisError` (exit 1), any other a `ModelError` (exit 2)."""
     shown = os.fspath(path)
     target = os.path.realpath(shown)
     folder = os.path.dirname(target)
@@ -289,6 +294,9 @@ def atomic(path, suffix=""):
         _replaceable(target, shown)
         os.replace(tmp, target)
     except OSError as exc:
+        if exc.errno in _FULL:        # the run was right, the machine could not keep it
+            raise AnalysisError(f"{shown}: cannot write ({exc.strerror or exc}); the file "
+                                "was left as it was: free some space and run again") from None
         raise ModelError(f"cannot write ({exc.strerror or exc})", shown) from None
     finally:
         if os.path.isdir(tmp) and not os.path.islink(tmp):

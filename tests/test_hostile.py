@@ -604,3 +604,22 @@ def test_a_huge_wrong_value_is_not_echoed_whole(tmp_path, capsys, value):
     assert main(["check", str(path)]) == 2
     err = capsys.readouterr().err
     assert "nodes.B[2]" in err and "characters" in err and len(err) < 400
+
+
+def test_a_full_disk_inside_an_output_file_is_exit_1_and_keeps_the_old_file(
+        tmp_path, capsys, monkeypatch):
+    # the computation was right and the input too: the machine could not keep the result
+    # (errno ENOSPC at the rename); the file named keeps its old content
+    import errno
+    from cranefe import outpaths
+    out = tmp_path / "modes.h5"
+    out.write_bytes(b"old")
+
+    def full(*a, **k):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    monkeypatch.setattr(outpaths.os, "replace", full)
+    assert main(["modes", HOIST, "--archive", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert "No space left on device" in err and "Traceback" not in err
+    assert out.read_bytes() == b"old"
+    assert sorted(os.listdir(tmp_path)) == ["modes.h5"]
