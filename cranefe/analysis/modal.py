@@ -253,11 +253,11 @@ def _sparse(system, k):
         return lu.solve(full)[a]
 
     OP = spla.LinearOperator((len(a), len(a)), matvec=opinv, dtype=float)
-    Kab = K[a][:, b]
+    Kaa, Kab = K[a][:, a].tocsr(), K[a][:, b].tocsr()
     Kbb = spla.splu(K[b][:, b].tocsc()) if len(b) else None
 
     def kstar(x):
-        y = K[a][:, a] @ x
+        y = Kaa @ x
         if Kbb is not None:
             y -= Kab @ Kbb.solve(Kab.T @ x)
         return y
