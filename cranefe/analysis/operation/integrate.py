@@ -13,7 +13,7 @@ import math
 import time
 
 import numpy as np
-from scipy.linalg.lapack import dgetrf, dgetrs
+from scipy.linalg.lapack import dgetrf, dgetri
 
 from ...errors import AnalysisError
 from .lean import ops as _ops
@@ -93,10 +93,15 @@ class Stepper:
         J = ev.K + c2 * ev.C
         J.ravel()[self.diag] += c1 * self.M
         # LAPACK's LU (partial pivoting, as np.linalg.solve) without numpy's wrapping,
-        # kept for the following iterations (modified Newton); info > 0: J singular
+        # then the inverse for the following iterations (modified Newton): for the few,
+        # well-conditioned coordinates (4/h^2 M dominates) one product per iteration;
+        # info > 0: J singular
         lu, piv, info = dgetrf(J, overwrite_a=True)
         self.tangents += 1
-        return (lu, piv) if info == 0 else None
+        if info != 0:
+            return None
+        inv, info = dgetri(lu, piv, overwrite_lu=True)
+        return inv if info == 0 else None
 
     def step(self, t0, q0, v0, a0, h, taut, jerk=None):
         """One trapezoidal step of length h -> (q1, v1, a1, ev1) or None.
@@ -119,24 +124,24 @@ class Stepper:
         if jerk is not None:
             q1 = q1 + (0.25 * h * h * h) * jerk
         qb = q0 + h * v0            # a1 = c1 (q1 - q0 - h v0) - a0 (trapezoidal rule)
-        lu = None
+        Jinv = None
         prev = np.inf
         for it in range(NEWTON_MAX):
             v1 = c2 * (q1 - q0) - v0
             a1 = c1 * (q1 - qb) - a0
-            fresh = lu is None
-            ev = self.ops.evaluate(t1, q1, v1, taut, kt, tangent=fresh, full=not fresh)
+            fresh = Jinv is None
+            ev = self.ops.evaluate(t1, q1, v1, taut, kt, tangent=fresh, full=False)
             self.newton_iterations += 1
             R = ev.F - M * a1
             if fresh:
                 if not math.isfinite(R.sum()):
                     return None
-                lu = self._factor(ev, c1, c2)
-                if lu is None:
+                Jinv = self._factor(ev, c1, c2)
+                if Jinv is None:
                     return None
-            dq, info = dgetrs(lu[0], lu[1], R)
+            dq = Jinv @ R
             dq_norm = float(np.abs(dq if wq is None else dq * wq).max(initial=0.0))
-            if info != 0 or not math.isfinite(dq_norm):
+            if not math.isfinite(dq_norm):
                 return None
             if not fresh and dq_norm <= self.newton_tol:
                 # quadratic (or fast linear) convergence: the residual at q1 + dq is
@@ -144,7 +149,7 @@ class Stepper:
                 q1 = q1 + dq
                 return q1, c2 * (q1 - q0) - v0, c1 * (q1 - qb) - a0, self.ops.powers(ev)
             if not fresh and dq_norm > 0.1 * prev:
-                lu = None                        # slow: a fresh tangent next iteration
+                Jinv = None                      # slow: a fresh tangent next iteration
             prev = dq_norm
             q1 = q1 + dq
         return None

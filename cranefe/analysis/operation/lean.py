@@ -21,6 +21,8 @@ integrals by their closed forms in the coordinates (`T = 1/2 v.M v + T_guided`,
 horizontal without sway).
 """
 
+import math
+
 import numpy as np
 
 from .mechanism import Eval
@@ -106,7 +108,18 @@ class Lean:
             np.add.at(self.W, (m.rope_drum, m.drum_of_end),
                       m.end_radius / m.lam_ref[m.rope_drum])
         self.wound = bool(len(m.rope_drum))
-        self._states = self._jk = None
+        self._states = self._jk = self._X0 = None
+        # span vectors' kinematic part: dk = Pk @ X.ravel() (the free nodes' rows hold
+        # their kinematic part); Pkin: the kinematic ends only (moving sheaves)
+        a3 = 3 * m.span_a[:, None] + np.arange(3)
+        b3 = 3 * m.span_b[:, None] + np.arange(3)
+        rows = np.arange(3 * ns).reshape(ns, 3)
+        self.Pk = np.zeros((3 * ns, 3 * m.nn))
+        self.Pkin = np.zeros((3 * ns, 3 * m.nn))
+        np.add.at(self.Pk, (rows, b3), 1.0)
+        np.add.at(self.Pk, (rows, a3), -1.0)
+        np.add.at(self.Pkin, (rows[m.kin_b], b3[m.kin_b]), 1.0)
+        np.add.at(self.Pkin, (rows[m.kin_a], a3[m.kin_a]), -1.0)
         self._taut, self._alltaut = None, False
         self._z0, self._znd = np.zeros(0), np.zeros(m.nd)
 
@@ -119,33 +132,78 @@ class Lean:
         m = self.m
         states = tuple(d.motion(t) for d in m._chain_drives)
         if self._jk is None or states != self._states:
-            X, V, _, _ = m.kinematics(t)
-            Xk, Vk = X.copy(), V.copy()
+            X, V = self._joints(states)          # free rows zero
             if m.sway:
-                Xk[m.free] = 0.0
-                Vk[m.free] = 0.0
-                T_guided = 0.0
+                Xk, Vk, T_guided = X, V, 0.0
             else:
                 H = m._H
+                Xk, Vk = X.copy(), V.copy()
                 Xk[m.free] = (m._X0_free + X[m.root] - m._X0_root) @ H.T
                 Vh = V[m.root] @ H.T
                 Vk[m.free] = Vh
                 T_guided = 0.5 * float(m.free_mass @ (Vh * Vh).sum(1))
-            a, b = m.span_a, m.span_b
-            dk = (Xk[b] - Xk[a]).ravel()
-            dvk = (Vk[b] - Vk[a]).ravel()
+            dk = self.Pk @ Xk.ravel()
+            dvk = self.Pk @ Vk.ravel()
             # velocity of the kinematic span ends only (the power fed by moving sheaves)
-            vkin = (np.where(m.kin_b[:, None], V[b], 0.0) -
-                    np.where(m.kin_a[:, None], V[a], 0.0)).ravel()
+            vkin = dvk if m.sway else self.Pkin @ V.ravel()
             self._states = states
-            self._jk = (Xk, Vk, dk, dvk if dvk.any() else None,
-                        vkin if vkin.any() else None, T_guided)
+            self._jk = (Xk, Vk, dk, dvk if np.count_nonzero(dvk) else None,
+                        vkin if np.count_nonzero(vkin) else None, T_guided)
         Xk, Vk, dk, dvk, vkin, T_guided = self._jk
         theta, omega = np.zeros(m.nd), np.zeros(m.nd)
         for k, d in m._profile_drums:
             theta[k], omega[k], _ = d.motion(t)
         L0 = m.L0_ref - self.W @ theta
         return (Xk, Vk, dk, dvk, vkin, theta, omega, L0, m.Rd @ omega, T_guided)
+
+    def _joints(self, states):
+        """(X, V) of the kinematic nodes for the joint drives' (s, s', s''): the body
+        motions of Mechanism.body_motions and kinematics (same formulas, Rodrigues'
+        rotation and the product rule along the tree) without the accelerations,
+        which the forces do not use."""
+        m = self.m
+        if self._X0 is None:
+            self._X0 = np.zeros((m.nn, 3))
+            for b, idx, Xr in m._groups:                   # bodies at rest: X = Xr
+                self._X0[idx] = Xr
+        X, V = self._X0.copy(), np.zeros_like(self._X0)
+        out = {}
+        c = 0
+        for b, p, d, sign, hinge, K, K2, point, axis in m._chain:
+            par = out.get(p)                               # None: the ground (identity)
+            if d is None:
+                if par is not None:
+                    out[b] = par
+                continue
+            s, ds, _ = states[c]
+            c += 1
+            s, ds = sign * s, sign * ds
+            if hinge:
+                sn, cs = math.sin(s), math.cos(s)
+                R = m._I3 + sn * K + (1 - cs) * K2
+                dR = ds * (cs * K + sn * K2)
+                pj, dpj = point - R @ point, -(dR @ point)
+                if par is None:
+                    out[b] = (R, dR, pj, dpj)
+                else:
+                    Rp, dRp, pp, dpp = par
+                    out[b] = (Rp @ R, dRp @ R + Rp @ dR, Rp @ pj + pp,
+                              dRp @ pj + Rp @ dpj + dpp)
+            else:
+                pj, dpj = s * axis, ds * axis
+                if par is None:
+                    out[b] = (m._I3, np.zeros((3, 3)), pj, dpj)
+                else:
+                    Rp, dRp, pp, dpp = par
+                    out[b] = (Rp, dRp, Rp @ pj + pp, dRp @ pj + Rp @ dpj + dpp)
+        for b, idx, Xr in m._groups:
+            mo = out.get(b)
+            if mo is None:
+                continue
+            R, dR, p, dp = mo
+            X[idx] = Xr @ R.T + p
+            V[idx] = Xr @ dR.T + dp
+        return X, V
 
     def evaluate(self, t, q, v, taut, kt, tangent=True, full=True):
         """Mechanism.evaluate's numbers; K, C only with `tangent`, X, V only with
@@ -166,18 +224,21 @@ class Lean:
         edot = G @ v + romega                               # elongation rate
         if dvk is not None:
             edot = edot + (ef * dvk) @ self.Bsum
+        loglam = np.log(lam)
         if self._alltaut:
-            S = EA * np.log(lam)
+            S = EA * loglam
             cL = EA / L
         else:
-            S = np.where(taut, EA * np.log(lam), 0.0)
+            S = np.where(taut, EA * loglam, 0.0)
             cL = np.where(taut, EA / L, 0.0)
         if self.damped:
-            # b = psi c / (2 pi w), w^2 = c r^T M^-1 r (Mechanism.evaluate)
-            w = np.sqrt(np.maximum(cL * ((G * G) @ m.invM_x), 0.0))
-            if self._alltaut and min(w.tolist()) > 0:
-                b = self.psi2pi * cL / w
+            # b = psi c / (2 pi w), w^2 = c r^T M^-1 r (Mechanism.evaluate), i.e.
+            # b = psi / (2 pi) sqrt(c / r^T M^-1 r) when every rope is taut
+            gm = (G * G) @ m.invM_x
+            if self._alltaut and min(gm.tolist()) > 0:
+                b = self.psi2pi * np.sqrt(cL / gm)
             else:
+                w = np.sqrt(np.maximum(cL * gm, 0.0))
                 b = np.where(w > 0, m.psi * cL / (TWO_PI * np.where(w > 0, w, 1.0)), 0.0)
             Sd = b * edot
             St = S + Sd
@@ -200,6 +261,7 @@ class Lean:
         ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, self._z0, theta, omega,
                   self._znd, None, None, None)
         ev._q, ev._v, ev._l, ev._e, ev._lam, ev._kt, ev._taut = q, v, l, ef, lam, kt, taut
+        ev._loglam, ev._St, ev._cL = loglam, St, cL
         return ev
 
     def powers(self, ev):
@@ -210,13 +272,15 @@ class Lean:
         S, Sd, lam, taut, kt = ev.S, ev.Sd, ev._lam, ev._taut, ev._kt
         vkin, romega, T_guided = kt[4], kt[8], kt[9]
         if self.wound:
-            wden = np.where(taut, m.EA * (lam * np.log(lam) - lam + 1), 0.0)
-            P_wound = float(((S - (S * lam - wden) / m.lam_ref) * romega).sum())
+            wden = m.EA * (lam * ev._loglam - lam + 1)
+            if not self._alltaut_of(taut):
+                wden = np.where(taut, wden, 0.0)
+            P_wound = float(((S - (S * lam - wden) / m.lam_ref) @ romega))
         else:
             P_wound = 0.0
         # moving sheaves and prescribed drums (held drums turn at omega = 0)
         rate = romega if vkin is None else (ev._e * vkin) @ self.Bsum + romega
-        ev.P_drive = float((S + Sd) @ rate)
+        ev.P_drive = float(ev._St @ rate)
         ev.P_diss = float(Sd @ ev.edot)
         ev.P_wound, ev.T_guided = P_wound, T_guided
         return ev
@@ -227,10 +291,17 @@ class Lean:
         v = ev._v
         T = 0.5 * float(m.M @ (v * v)) + ev._kt[9]
         Vg = -float(m.Fg @ ev._q)
-        L, L0 = ev.L, ev.L0
-        with np.errstate(invalid="ignore", divide="ignore"):
-            U = float(np.where(taut, m.EA * (L * np.log(L / L0) - L + L0), 0.0).sum())
+        # U = EA (L ln(L/L0) - L + L0) = S L - EA (L - L0) on taut ropes
+        L = ev.L
+        u = ev.S * L - m.EA * (L - ev.L0)
+        U = float((u if taut is ev._taut and self._alltaut_of(taut) else
+                   np.where(taut, u, 0.0)).sum())
         return T, Vg, U
+
+    def _alltaut_of(self, taut):
+        if taut is not self._taut:
+            self._taut, self._alltaut = taut, bool(taut.all())
+        return self._alltaut
 
     def place(self, t, q, v):
         """(X, V, theta, omega) as Mechanism.place."""

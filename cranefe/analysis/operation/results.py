@@ -175,10 +175,13 @@ class Recorder:
         self.max_terms = [0.0, 0.0, 0.0]
 
     def _force_rate(self, ev):
-        rate = getattr(ev, "_rate", None)        # each state serves two steps
-        if rate is None:
-            rate = ev._rate = np.where(ev.S > 0, self.m.EA / ev.L, 0.0) * ev.edot
-        return rate
+        """(S + S_d, its rate EA/L e') of a state, made once (each serves two steps)."""
+        fr = getattr(ev, "_fr", None)
+        if fr is None:
+            F = ev.S + ev.Sd
+            fr = ev._fr = (F, np.where(ev.S > 0, self.m.EA / ev.L, 0.0) * ev.edot,
+                           F.tolist())
+        return fr
 
     def start(self, t, q, v, a, ev, taut):
         self.E0 = self.ops.energy(ev, taut)
@@ -198,11 +201,10 @@ class Recorder:
         self.W += 0.5 * h * (ev0.P_drive + ev1.P_drive) + ev1.T_guided - ev0.T_guided
         self.D += 0.5 * h * (ev0.P_diss + ev1.P_diss)
         self.Wd += 0.5 * h * (ev0.P_wound + ev1.P_wound)
-        F0, F1 = ev0.S + ev0.Sd, ev1.S + ev1.Sd
+        (_, r0, F0), (_, r1, F1) = self._force_rate(ev0), self._force_rate(ev1)
         peak, peak_t = self.peak, self.peak_t
-        for k, (a, b, m0, m1) in enumerate(zip(F0.tolist(), F1.tolist(),
-                                               (h * self._force_rate(ev0)).tolist(),
-                                               (h * self._force_rate(ev1)).tolist())):
+        for k, (a, b, m0, m1) in enumerate(zip(F0, F1, (h * r0).tolist(),
+                                               (h * r1).tolist())):
             if a > peak[k] or b > peak[k] or (m0 > 0 and m1 < 0):
                 best, where = _hermite_max1(a, b, m0, m1)
                 if best > peak[k]:
@@ -233,8 +235,7 @@ class Recorder:
         interpolant of their values and rates at the step's ends."""
         m = self.m
         X, _, theta, omega = self.ops.place(ts, qs, vs)
-        F0, F1 = ev0.S + ev0.Sd, ev1.S + ev1.Sd
-        d0, d1 = self._force_rate(ev0), self._force_rate(ev1)
+        (F0, d0, _), (F1, d1, _) = self._force_rate(ev0), self._force_rate(ev1)
         F = (2*s**3 - 3*s**2 + 1) * F0 + (s**3 - 2*s**2 + s) * h * d0 \
             + (-2*s**3 + 3*s**2) * F1 + (s**3 - s**2) * h * d1
         tq = np.zeros(m.nd)
@@ -248,6 +249,7 @@ class Recorder:
 
     def _sample(self, ev, q, v):
         m = self.m
+        X = ev.X if ev.X is not None else self.ops.place(ev.t, q, v)[0]
         nr_all = len(m.model.ropes)
         F = np.full(nr_all, np.nan)
         F[m.ropes] = ev.S + ev.Sd
@@ -263,8 +265,8 @@ class Recorder:
                 spd.append(ds)
                 tq.append(np.nan)
         # the span above each load; its angle from the vertical is taken in `result`
-        self.samples.append((ev.t, ev.X[self.mass_nodes].copy(), F, pos, spd, tq,
-                             ev.X[m.hang] - ev.X[m.free]))
+        self.samples.append((ev.t, X[self.mass_nodes], F, pos, spd, tq,
+                             X[m.hang] - X[m.free]))
 
     def _drum_torque(self, ev, d):
         m = self.m
@@ -313,8 +315,9 @@ class Recorder:
             after = t >= t_end - 1e-9
             resid = sw[after].max(axis=0) if after.any() else resid
             ev = self.last
+            Xl = ev.X if ev.X is not None else self.ops.place(ev.t, ev._q, ev._v)[0]
             for k in range(len(m.free)):
-                l = np.linalg.norm(ev.X[m.hang[k]] - ev.X[m.free[k]])
+                l = np.linalg.norm(Xl[m.hang[k]] - Xl[m.free[k]])
                 period = 2 * np.pi * np.sqrt(l / np.linalg.norm(m.g))
                 if m.sway and t[-1] - t_end < period:
                     warnings.append(f"the run ends {t[-1] - t_end:.3g} s after the last "
