@@ -268,8 +268,8 @@ def check_shaping(files):
 
 
 def check_operation_speed(files):
-    """The operation engine's speed table (studies/operation_speed.py, quick: 10 s of the
-    tower-crane cycle): the tighter tolerance costs more steps and is closer to the
+    """The operation engine's speed table (studies/operation_speed.py, quick: the
+    tower-crane cycle, 5 s): the tighter tolerance costs more steps and is closer to the
     tight run (the method converges), every run's energy balance closes to 1e-4."""
     rows = read(files["operation_speed.csv"])
     assert [r["engine"] for r in rows] == ["new", "new"]
