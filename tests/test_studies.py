@@ -267,8 +267,22 @@ def check_shaping(files):
     assert num(eo[2]["int_a2"]) < same                  # dropping the sway constraints
 
 
+def check_operation_speed(files):
+    """The operation engine's speed table (studies/operation_speed.py, quick: the
+    tower-crane cycle, 5 s): the tighter tolerance costs more steps and is closer to the
+    tight run (the method converges), every run's energy balance closes to 1e-4."""
+    rows = read(files["operation_speed.csv"])
+    assert [r["engine"] for r in rows] == ["new", "new"]
+    loose, tight = rows
+    assert num(tight["steps"]) > num(loose["steps"])
+    assert num(tight["err_position_m"]) < num(loose["err_position_m"])
+    assert num(tight["err_dynamic_factor"]) < num(loose["err_dynamic_factor"])
+    assert all(num(r["energy_error"]) < 1e-4 and num(r["rtf_cpu"]) > 0 for r in rows)
+
+
 CHECKS = {"damping": check_damping, "drive": check_drive, "eigensolvers": check_eigensolvers,
-          "luffing": check_luffing, "ropes": check_ropes, "shaping": check_shaping,
+          "luffing": check_luffing, "operation_speed": check_operation_speed,
+          "ropes": check_ropes, "shaping": check_shaping,
           "sweeps": check_sweeps,
           "transient": check_transient, "validation": check_validation}
 

@@ -9,12 +9,14 @@ rope going slack or taut ends a step where its stretch ln(L/L0) crosses zero (lo
 the Illinois variant of regula falsi on the step length, each trial a full step).
 """
 
+import math
 import time
 
 import numpy as np
-from scipy.linalg.lapack import dgesv
+from scipy.linalg.lapack import dgetrf, dgetri
 
 from ...errors import AnalysisError
+from .lean import ops as _ops
 from .mechanism import Mechanism
 from .results import Recorder
 from .scene import parse
@@ -23,64 +25,147 @@ NEWTON_MAX = 12
 MAX_STEPS = 2_000_000
 
 
+class StepControl:
+    """The next step length from the local error estimate err (relative to the
+    tolerance; the trapezoidal rule's estimate is O(h^3), so err ~ C h^3).
+
+    Accepted steps: Gustafsson's predictive controller (Gustafsson 1994; Hairer & Wanner,
+    Solving ODEs II, IV.8 eq. 8.21, as in their Radau5): the smaller of the elementary
+    `h safe err^(-1/3)` and `h safe (h / h_prev) (err_prev / err)^(1/3) err^(-1/3)`, which
+    follows the trend of C instead of assuming it constant (the elementary rule overshoots
+    where the error constant falls and is rejected where it rises: an oscillation of the
+    rope's force moves the estimate by its phase). Rejected steps: `h safe err^(-1/3)`,
+    and the step after a rejection does not grow. Factors bounded to [0.2, 2].
+    """
+
+    SAFE, LO, HI = 0.9, 0.2, 2.0
+
+    def __init__(self):
+        self.h_acc = self.err_acc = None
+        self.after_reject = False
+
+    def reset(self):
+        """Forget the history (after an event or a step cut short at a breakpoint)."""
+        self.h_acc = self.err_acc = None
+
+    def accepted(self, h, err):
+        err = max(err, 1e-10)
+        fac = self.SAFE * err ** (-1 / 3)
+        if self.h_acc is not None:
+            fac = min(fac, self.SAFE * (h / self.h_acc) *
+                      (self.err_acc / err) ** (1 / 3) * err ** (-1 / 3))
+        fac = min(max(fac, self.LO), 1.0 if self.after_reject else self.HI)
+        self.h_acc, self.err_acc = h, max(err, 1e-2)
+        self.after_reject = False
+        return h * fac
+
+    def rejected(self, h, err):
+        self.after_reject = True
+        return h * max(self.LO, self.SAFE * err ** (-1 / 3))
+
+
 class Stepper:
     def __init__(self, mech, spec, lscale):
         self.m, self.spec = mech, spec
+        self.ops = _ops(mech)
         self.lscale = lscale
         n = mech.n
         self.wq = np.ones(n)                       # weights: metres of motion
         for c, k in enumerate(mech.qdrums):
             self.wq[mech.nx + c] = mech.model.drums[k].radius
+        self.wq = None if (self.wq == 1.0).all() else self.wq     # None: all metres
+        self._taut = None
         self.M = mech.M
         self.diag = np.arange(n) * (n + 1)         # flat indices of a (n, n) diagonal
         self.newton_tol = 1e-4 * spec.tolerance * lscale
         self.steps = self.rejected = self.newton_iterations = 0
+        self.tangents = 0
         self.events = []
-        self.kin_cache = {}
 
     def kin(self, t):
-        k = self.kin_cache.get(t)
-        if k is None:
-            if len(self.kin_cache) > 8:
-                self.kin_cache.clear()
-            k = self.kin_cache[t] = self.m.kinematics(t)
-        return k
+        return self.ops.kin(t)
 
     def accel(self, t, q, v, taut):
-        ev = self.m.evaluate(t, q, v, taut, self.kin(t))
-        return ev.F / self.M, ev
+        ev = self.ops.evaluate(t, q, v, taut, self.kin(t), tangent=False)
+        return ev.F / self.M, self.ops.powers(ev)
 
-    def step(self, t0, q0, v0, a0, h, taut):
-        """One trapezoidal step of length h -> (q1, v1, a1, ev1) or None."""
+    def _factor(self, ev, c1, c2):
+        J = ev.K + c2 * ev.C
+        J.ravel()[self.diag] += c1 * self.M
+        # LAPACK's LU (partial pivoting, as np.linalg.solve) without numpy's wrapping,
+        # then the inverse for the following iterations (modified Newton): for the few,
+        # well-conditioned coordinates (4/h^2 M dominates) one product per iteration;
+        # info > 0: J singular
+        lu, piv, info = dgetrf(J, overwrite_a=True)
+        self.tangents += 1
+        if info != 0:
+            return None
+        inv, info = dgetri(lu, piv, overwrite_lu=True)
+        return inv if info == 0 else None
+
+    def step(self, t0, q0, v0, a0, h, taut, jerk=None):
+        """One trapezoidal step of length h -> (q1, v1, a1, ev1) or None.
+
+        Newton's method from a predictor, on the tangent `4/h^2 M + 2/h C + K` made and
+        factorised at the predictor and kept while the iteration contracts fast
+        (modified Newton: every later iteration costs a residual and a back-substitution);
+        made afresh at the current iterate when a correction shrinks by less than 10x.
+        Converged when the last correction is below 1e-4 of the tolerance; the forces of
+        that iterate (the correction away) serve the recorder and the event test.
+        Predictor: the trapezoidal rule's own q1 = q0 + h v0 + h^2/4 (a0 + a1) with a1
+        extrapolated as a0 + h jerk (jerk: the last step's (a0 - a_prev) / h_prev), so
+        that the first correction is the extrapolation's O(h^4) error.
+        """
         t1 = t0 + h
-        kin = self.kin(t1)
-        M = self.M
-        q1 = q0 + h * v0 + 0.5 * h * h * a0
+        kt = self.ops.kin(t1)
+        M, wq = self.M, self.wq
         c1, c2 = 4.0 / (h * h), 2.0 / h
-        dq_norm = np.inf
-        ev = None
+        q1 = q0 + h * v0 + (0.5 * h * h) * a0
+        if jerk is not None:
+            q1 = q1 + (0.25 * h * h * h) * jerk
+        qb = q0 + h * v0            # a1 = c1 (q1 - q0 - h v0) - a0 (trapezoidal rule)
+        Jinv = None
+        prev = np.inf
         for it in range(NEWTON_MAX):
             v1 = c2 * (q1 - q0) - v0
-            a1 = c1 * (q1 - q0 - h * v0) - a0
-            if dq_norm <= self.newton_tol:
-                # quadratic convergence: the residual at q1 is O(dq^2); the forces of the
-                # last iterate (dq away) serve the recorder and the event test
-                return q1, v1, a1, self.m.powers(ev)
-            ev = self.m.evaluate(t1, q1, v1, taut, kin, powers=False)
+            a1 = c1 * (q1 - qb) - a0
+            fresh = Jinv is None
+            ev = self.ops.evaluate(t1, q1, v1, taut, kt, tangent=fresh, full=False)
             self.newton_iterations += 1
-            if not np.isfinite(ev.F).all():
+            R = ev.F - M * a1
+            if fresh:
+                if not math.isfinite(R.sum()):
+                    return None
+                Jinv = self._factor(ev, c1, c2)
+                if Jinv is None:
+                    return None
+            dq = Jinv @ R
+            dq_norm = float(np.abs(dq if wq is None else dq * wq).max(initial=0.0))
+            if not math.isfinite(dq_norm):
                 return None
-            Rs = M * a1 - ev.F
-            J = ev.K + c2 * ev.C
-            J.ravel()[self.diag] += c1 * M
-            # LAPACK's dgesv directly (LU with partial pivoting, as np.linalg.solve) without
-            # numpy's per-call wrapping; info > 0: J singular
-            _, _, dq, info = dgesv(J, -Rs, overwrite_a=True, overwrite_b=True)
-            if info != 0 or not np.isfinite(dq).all():
-                return None
+            if not fresh and dq_norm <= self.newton_tol:
+                # quadratic (or fast linear) convergence: the residual at q1 + dq is
+                # O(dq^2); the forces of this iterate serve the recorder
+                q1 = q1 + dq
+                return q1, c2 * (q1 - q0) - v0, c1 * (q1 - qb) - a0, self.ops.powers(ev)
+            if not fresh and dq_norm > 0.1 * prev:
+                Jinv = None                      # slow: a fresh tangent next iteration
+            prev = dq_norm
             q1 = q1 + dq
-            dq_norm = np.abs(dq * self.wq).max(initial=0.0)
         return None
+
+    def crossing(self, ev1, taut):
+        """Ropes whose stretch ln(L/L0) changed sign over the step (slack / taut)."""
+        lam = ev1.L / ev1.L0
+        if self.m_alltaut(taut):
+            return None if (lam >= 1.0).all() else np.flatnonzero(lam < 1.0)
+        cross = np.flatnonzero(np.where(taut, lam < 1.0, lam > 1.0))
+        return cross if len(cross) else None
+
+    def m_alltaut(self, taut):
+        if taut is not self._taut:
+            self._taut, self._alltaut = taut, bool(taut.all())
+        return self._alltaut
 
     def stretch(self, ev):
         return np.log(ev.L / ev.L0)
@@ -110,7 +195,7 @@ def simulate(model, progress=None, initial=None):
     taut = mech.taut0.copy()
     t = 0.0
     a, ev = st.accel(t, q, v, taut)
-    rec = Recorder(mech, spec)
+    rec = Recorder(mech, spec, st.ops)
     t_setup = time.perf_counter()
     rec.start(t, q, v, a, ev, taut)
     bps = list(spec.breakpoints) + [T]
@@ -124,6 +209,8 @@ def simulate(model, progress=None, initial=None):
     h = min(spec.max_step, 1e-3 * T, 1e-2)
     tol = spec.tolerance * lscale
     hmin = 1e-12 * max(T, 1.0)
+    ctl = StepControl()
+    jerk = None                  # (a0 - a_prev) / h_prev of the last accepted step
     bi = 0
     try:
         while t < T * (1 - 1e-14):
@@ -133,26 +220,27 @@ def simulate(model, progress=None, initial=None):
             hh = min(h, spec.max_step, t_next - t)
             if t_next - t - hh < 1e-9 * hh:
                 hh = t_next - t
-            out = st.step(t, q, v, a, hh, taut)
+            out = st.step(t, q, v, a, hh, taut, jerk)
             if out is None:
                 st.rejected += 1
                 h = hh * 0.25
+                ctl.after_reject = True
                 if h < hmin:
                     raise _blowup(t, h, "Newton's method does not converge", mech, ev, taut)
                 continue
             q1, v1, a1, ev1 = out
-            err = np.abs((hh * hh / 12.0) * (a1 - a) * st.wq).max(initial=0.0) / tol
+            da = np.abs(a1 - a) if st.wq is None else np.abs((a1 - a) * st.wq)
+            err = float(da.max(initial=0.0)) * (hh * hh / 12.0) / tol
             if err > 1.0:
                 st.rejected += 1
-                h = hh * max(0.2, 0.9 * err ** (-1 / 3))
+                h = ctl.rejected(hh, err)
                 if h < hmin:
                     raise _blowup(t, h, "the step size collapsed", mech, ev, taut)
                 continue
             # slack / taut events: the stretch ln(L/L0) of a rope changes sign
-            g0, g1 = st.stretch(ev), st.stretch(ev1)
-            cross = np.flatnonzero(np.where(taut, g1 < 0, g1 > 0))
-            if len(cross):
-                res = _locate(st, t, q, v, a, hh, taut, g0, cross)
+            cross = st.crossing(ev1, taut)
+            if cross is not None:
+                res = _locate(st, t, q, v, a, hh, taut, st.stretch(ev), cross)
                 if res is None:
                     h = hh * 0.25
                     st.rejected += 1
@@ -167,18 +255,28 @@ def simulate(model, progress=None, initial=None):
                 a, ev = st.accel(t, q, v, taut)
                 rec.switch(t, ev, taut)
                 st.steps += 1
+                jerk = None
+                ctl.reset()
                 continue
             rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
+            jerk = (a1 - a) / hh
             t, q, v, a, ev = t + hh, q1, v1, a1, ev1
             st.steps += 1
-            _two_blocking(mech, ev, t)
+            _two_blocking(mech, st.ops.span_lengths(ev), t)
             if st.steps > MAX_STEPS:
                 raise AnalysisError(f"more than {MAX_STEPS} steps at t = {t:.6g} s; raise "
                                     "analysis.tolerance")
             if progress is not None:
                 progress(t, T)
-            h_new = hh * min(2.0, 0.9 * err ** (-1 / 3)) if err > 0 else 2 * hh
-            h = max(h, h_new) if hh < h else h_new      # a step cut at a breakpoint
+            h_new = ctl.accepted(hh, err)
+            if hh < h:                  # a step cut at a breakpoint: keep the longer one
+                h = max(h, h_new)
+                ctl.reset()
+            else:
+                h = h_new
+        t_end = time.perf_counter()
+        res = rec.result(st, {"setup": t_setup - t_start, "integrate": t_end - t_setup,
+                              "total": t_end - t_start})
     except AnalysisError as exc:
         t_end = time.perf_counter()
         exc.result = rec.result(st, {"setup": t_setup - t_start,
@@ -186,9 +284,10 @@ def simulate(model, progress=None, initial=None):
                                      "total": t_end - t_start}, status=1,
                                 message=str(exc))
         raise
-    t_end = time.perf_counter()
-    return rec.result(st, {"setup": t_setup - t_start, "integrate": t_end - t_setup,
-                           "total": t_end - t_start})
+    t_res = time.perf_counter()
+    res.timings["results"] = t_res - t_end
+    res.timings["total"] = t_res - t_start
+    return res
 
 
 def _locate(st, t, q, v, a, h, taut, g0, cross):
@@ -229,12 +328,11 @@ def _locate(st, t, q, v, a, h, taut, g0, cross):
     return best
 
 
-def _two_blocking(mech, ev, t):
-    """A span that touches a load shrinks to 1 % of its reference length: the load has
-    reached its sheave (the engine has no contact model for that)."""
-    if not len(mech.span_a):
+def _two_blocking(mech, l, t):
+    """A span that touches a load shrinks to 1 % of its reference length (l: the span
+    lengths): the load has reached its sheave (the engine has no contact model)."""
+    if not len(mech.span_a) or (l >= 0.01 * mech.span_ref).all():
         return
-    l = np.linalg.norm(ev.X[mech.span_b] - ev.X[mech.span_a], axis=1)
     short = np.flatnonzero((l < 0.01 * mech.span_ref) & ~(mech.kin_a & mech.kin_b))
     if len(short):
         k = short[0]

@@ -6,6 +6,7 @@ before the first segment the drive rests at s = 0, after the last it keeps the l
 speed (zero for trapezoid and S-curve). docs/operations.md, "Drive profiles".
 """
 
+from bisect import bisect_right
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,20 +38,27 @@ class Motion:
         return cls(np.array(t), np.array(s), np.array(v), np.array(a + [0.0]),
                    np.array(j + [0.0]), kind)
 
+    def __post_init__(self):
+        # the segments as plain floats: __call__ runs at every step of the integrator,
+        # where numpy's scalar indexing and searchsorted cost more than the arithmetic
+        last = len(self.t) - 1
+        segs = tuple((float(self.s[k]), float(self.v[k]),
+                      0.0 if k == last else float(self.a[k]),
+                      0.0 if k == last else float(self.j[k])) for k in range(last + 1))
+        object.__setattr__(self, "_tl", tuple(float(x) for x in self.t))
+        object.__setattr__(self, "_segs", segs)
+
     def __call__(self, t):
         """(position, speed, acceleration) at t."""
-        tt = self.t
-        if t < tt[0]:
-            v = self.v[0]
+        tl = self._tl
+        if t < tl[0]:
+            v = self._segs[0][1]
             return v * t, v, 0.0
-        k = min(int(np.searchsorted(tt, t, side="right")) - 1, len(tt) - 1)
-        tau = t - tt[k]
-        a, jk = self.a[k], self.j[k]
-        if k == len(tt) - 1:
-            a = jk = 0.0
-        v = self.v[k] + a * tau + jk * tau**2 / 2
-        return self.s[k] + self.v[k] * tau + a * tau**2 / 2 + jk * tau**3 / 6, v, \
-            a + jk * tau
+        k = bisect_right(tl, t) - 1          # = searchsorted(t, side="right") - 1
+        s, v, a, jk = self._segs[k]
+        tau = t - tl[k]
+        return s + v * tau + a * tau * tau / 2 + jk * tau**3 / 6, \
+            v + a * tau + jk * tau * tau / 2, a + jk * tau
 
     @property
     def breakpoints(self):

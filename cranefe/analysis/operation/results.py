@@ -7,6 +7,7 @@ Stored output times are sampled inside the steps from the cubic Hermite interpol
 the coordinates (q, q' at both ends), so they cost one force evaluation each.
 """
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -116,28 +117,48 @@ class OperationResult:
 def hermite_max(S0, S1, d0, d1, h):
     """Largest value of the cubic Hermite interpolants through (S0, d0), (S1, d1) over a
     step h, and where (fraction of h)."""
-    best = np.maximum(S0, S1)
-    where = np.where(S1 >= S0, 1.0, 0.0)
-    m0, m1 = h * d0, h * d1
-    # p(s) = (2s^3-3s^2+1) S0 + (s^3-2s^2+s) m0 + (-2s^3+3s^2) S1 + (s^3-s^2) m1;
-    # p'(s) = A s^2 + B s + C
-    A = 6 * (S0 - S1) + 3 * (m0 + m1)
-    B = -6 * (S0 - S1) - 4 * m0 - 2 * m1
-    C = m0
-    for k in np.flatnonzero((m0 > 0) & (m1 < 0)):
-        for s in np.roots([A[k], B[k], C[k]]) if abs(A[k]) > 0 else [-C[k] / B[k]]:
-            if np.isreal(s) and 0 < s.real < 1:
-                s = s.real
-                val = (2 * s**3 - 3 * s**2 + 1) * S0[k] + (s**3 - 2 * s**2 + s) * m0[k] \
-                    + (-2 * s**3 + 3 * s**2) * S1[k] + (s**3 - s**2) * m1[k]
-                if val > best[k]:
-                    best[k], where[k] = val, s
+    best, where = [], []
+    for a, b, m0, m1 in zip(np.ravel(S0).tolist(), np.ravel(S1).tolist(),
+                            np.ravel(d0).tolist(), np.ravel(d1).tolist()):
+        v, w = _hermite_max1(a, b, h * m0, h * m1)
+        best.append(v)
+        where.append(w)
+    return np.array(best), np.array(where)
+
+
+def _hermite_max1(S0, S1, m0, m1):
+    """hermite_max of one rope in plain floats (m0, m1: h times the end rates).
+
+    p(s) = (2s^3-3s^2+1) S0 + (s^3-2s^2+s) m0 + (-2s^3+3s^2) S1 + (s^3-s^2) m1 has
+    p'(s) = A s^2 + B s + C with C = p'(0) = m0 and A + B + C = p'(1) = m1: an interior
+    maximum only when m0 > 0 > m1, and then exactly one root of p' in (0, 1) (a
+    quadratic changing sign once there), taken by the cancellation-free formula."""
+    if S1 >= S0:
+        best, where = S1, 1.0
+    else:
+        best, where = S0, 0.0
+    if m0 > 0 and m1 < 0:
+        A = 6 * (S0 - S1) + 3 * (m0 + m1)
+        B = -6 * (S0 - S1) - 4 * m0 - 2 * m1
+        C = m0
+        if A != 0:
+            disc = max(B * B - 4 * A * C, 0.0)
+            qq = -0.5 * (B + math.copysign(math.sqrt(disc), B))
+            cands = (qq / A, C / qq if qq != 0 else -1.0)
+        else:
+            cands = (-C / B,)
+        for s in cands:
+            if 0 < s < 1:
+                val = (2 * s**3 - 3 * s**2 + 1) * S0 + (s**3 - 2 * s**2 + s) * m0 \
+                    + (-2 * s**3 + 3 * s**2) * S1 + (s**3 - s**2) * m1
+                if val > best:
+                    best, where = val, s
     return best, where
 
 
 class Recorder:
-    def __init__(self, mech, spec):
-        self.m, self.spec = mech, spec
+    def __init__(self, mech, spec, ops):
+        self.m, self.spec, self.ops = mech, spec, ops
         self.samples = []
         T = spec.duration
         self.out_times = np.arange(0.0, T + 0.5 * spec.output_step, spec.output_step)
@@ -146,23 +167,26 @@ class Recorder:
             self.out_times = np.append(self.out_times, T)
         self.next_out = 1
         nr = len(mech.ropes)
-        self.peak = np.zeros(nr)
-        self.peak_t = np.zeros(nr)
+        self.peak = [0.0] * nr
+        self.peak_t = [0.0] * nr
         self.W = self.D = self.Wd = 0.0
         self.mass_nodes = mech.mass_nodes
         self.sway_nodes = mech.free
-        self.max_terms = np.zeros(3)
+        self.max_terms = [0.0, 0.0, 0.0]
 
     def _force_rate(self, ev):
-        rate = getattr(ev, "_rate", None)        # each state serves two steps
-        if rate is None:
-            rate = ev._rate = np.where(ev.S > 0, self.m.EA / ev.L, 0.0) * ev.edot
-        return rate
+        """(S + S_d, its rate EA/L e') of a state, made once (each serves two steps)."""
+        fr = getattr(ev, "_fr", None)
+        if fr is None:
+            F = ev.S + ev.Sd
+            fr = ev._fr = (F, np.where(ev.S > 0, self.m.EA / ev.L, 0.0) * ev.edot,
+                           F.tolist())
+        return fr
 
     def start(self, t, q, v, a, ev, taut):
-        self.E0 = self.m.energy(ev, taut)
+        self.E0 = self.ops.energy(ev, taut)
         self.Vg0 = self.E0[1]
-        self.peak = ev.S + ev.Sd
+        self.peak = (ev.S + ev.Sd).tolist()
         self.last = ev
         self.taut = taut
         self._sample(ev, q, v)
@@ -177,13 +201,17 @@ class Recorder:
         self.W += 0.5 * h * (ev0.P_drive + ev1.P_drive) + ev1.T_guided - ev0.T_guided
         self.D += 0.5 * h * (ev0.P_diss + ev1.P_diss)
         self.Wd += 0.5 * h * (ev0.P_wound + ev1.P_wound)
-        S0, S1 = ev0.S + ev0.Sd, ev1.S + ev1.Sd
-        best, where = hermite_max(S0, S1, self._force_rate(ev0), self._force_rate(ev1), h)
-        up = best > self.peak
-        self.peak_t[up] = t0 + where[up] * h
-        self.peak = np.maximum(self.peak, best)
-        T, Vg, U = self.m.energy(ev1, taut)
-        self.max_terms = np.maximum(self.max_terms, [T, abs(Vg - self.Vg0), U])
+        (_, r0, F0), (_, r1, F1) = self._force_rate(ev0), self._force_rate(ev1)
+        peak, peak_t = self.peak, self.peak_t
+        for k, (a, b, m0, m1) in enumerate(zip(F0, F1, (h * r0).tolist(),
+                                               (h * r1).tolist())):
+            if a > peak[k] or b > peak[k] or (m0 > 0 and m1 < 0):
+                best, where = _hermite_max1(a, b, m0, m1)
+                if best > peak[k]:
+                    peak[k], peak_t[k] = best, t0 + where * h
+        T, Vg, U = self.ops.energy(ev1, taut)
+        mt = self.max_terms
+        mt[0], mt[1], mt[2] = max(mt[0], T), max(mt[1], abs(Vg - self.Vg0)), max(mt[2], U)
         self.last_E = (T, Vg, U)
         self.taut = taut
         while self.next_out < len(self.out_times) and \
@@ -206,9 +234,8 @@ class Recorder:
         positions from the interpolated coordinates, rope forces from the cubic Hermite
         interpolant of their values and rates at the step's ends."""
         m = self.m
-        X, _, theta, omega = m.place(ts, qs, vs)
-        F0, F1 = ev0.S + ev0.Sd, ev1.S + ev1.Sd
-        d0, d1 = self._force_rate(ev0), self._force_rate(ev1)
+        X, _, theta, omega = self.ops.place(ts, qs, vs)
+        (F0, d0, _), (F1, d1, _) = self._force_rate(ev0), self._force_rate(ev1)
         F = (2*s**3 - 3*s**2 + 1) * F0 + (s**3 - 2*s**2 + s) * h * d0 \
             + (-2*s**3 + 3*s**2) * F1 + (s**3 - s**2) * h * d1
         tq = np.zeros(m.nd)
@@ -222,6 +249,7 @@ class Recorder:
 
     def _sample(self, ev, q, v):
         m = self.m
+        X = ev.X if ev.X is not None else self.ops.place(ev.t, q, v)[0]
         nr_all = len(m.model.ropes)
         F = np.full(nr_all, np.nan)
         F[m.ropes] = ev.S + ev.Sd
@@ -236,8 +264,9 @@ class Recorder:
                 pos.append(s)
                 spd.append(ds)
                 tq.append(np.nan)
-        sway = [self._angle(ev, k) for k in range(len(m.free))]
-        self.samples.append((ev.t, ev.X[self.mass_nodes].copy(), F, pos, spd, tq, sway))
+        # the span above each load; its angle from the vertical is taken in `result`
+        self.samples.append((ev.t, X[self.mass_nodes], F, pos, spd, tq,
+                             X[m.hang] - X[m.free]))
 
     def _drum_torque(self, ev, d):
         m = self.m
@@ -249,10 +278,10 @@ class Recorder:
                 tq += R * (ev.S[j] + ev.Sd[j])
         return tq
 
-    def _angle(self, ev, k):
-        m = self.m
-        d = ev.X[m.hang[k]] - ev.X[m.free[k]]
-        c = d @ m.up / np.linalg.norm(d)
+    def _angles(self, d):
+        """(nt, ns) angles (deg) from the vertical of the spans d (nt, ns, 3) above the
+        loads."""
+        c = (d @ self.m.up) / np.linalg.norm(d, axis=-1)
         return np.degrees(np.arccos(np.clip(c, -1.0, 1.0)))
 
     def result(self, st, timings, status=0, message="ok"):
@@ -266,7 +295,8 @@ class Recorder:
         pos = np.array([s[3] for s in self.samples], float).reshape(nt, nv)
         spd = np.array([s[4] for s in self.samples], float).reshape(nt, nv)
         tq = np.array([s[5] for s in self.samples], float).reshape(nt, nv)
-        sw = np.array([s[6] for s in self.samples], float).reshape(nt, len(m.free))
+        sw = self._angles(np.array([s[6] for s in self.samples], float).reshape(
+            nt, len(m.free), 3))
         nr_all = len(model.ropes)
         fmax, tmax, static = (np.full(nr_all, np.nan) for _ in range(3))
         fmax[m.ropes], tmax[m.ropes], static[m.ropes] = self.peak, self.peak_t, m.S0
@@ -285,8 +315,9 @@ class Recorder:
             after = t >= t_end - 1e-9
             resid = sw[after].max(axis=0) if after.any() else resid
             ev = self.last
+            Xl = ev.X if ev.X is not None else self.ops.place(ev.t, ev._q, ev._v)[0]
             for k in range(len(m.free)):
-                l = np.linalg.norm(ev.X[m.hang[k]] - ev.X[m.free[k]])
+                l = np.linalg.norm(Xl[m.hang[k]] - Xl[m.free[k]])
                 period = 2 * np.pi * np.sqrt(l / np.linalg.norm(m.g))
                 if m.sway and t[-1] - t_end < period:
                     warnings.append(f"the run ends {t[-1] - t_end:.3g} s after the last "
