@@ -145,8 +145,8 @@ def radau(model, rtol, atol=None, sample=2e-3):
         mine = out[((out > a) | (k == 0)) & (out <= b)]
         fine = np.union1d(np.linspace(a, b, max(3, int(np.ceil((b - a) / sample)) + 1)),
                           mine)
-        for tt in fine:
-            yy = sol.sol(tt)
+        Y = sol.sol(fine)
+        for tt, yy in zip(fine, Y.T):
             ev = mech.evaluate(tt, yy[:n], yy[n:], taut, powers=False)
             peak = np.maximum(peak, ev.S + ev.Sd)
             if np.isin(tt, mine):
@@ -425,8 +425,45 @@ def peers_markdown(peers):
                 vals.append("-" if r is None else f"{float(r['value']):.6g}")
             rv = f"{float(ref[q]):.6g}" if q in ref else ""
             lines.append(f"| {q} | {rv} | " + " | ".join(vals) + " |")
-        lines.append("")
+        worst = {k: _worst(rows, *k) for k in runs}
+        lines.append("| largest peak force difference (relative) | | " + " | ".join(
+            _e(worst[k][0]) for k in runs) + " |")
+        lines.append("| largest sway difference [deg] | | " + " | ".join(
+            _e(worst[k][1]) for k in runs) + " |")
+        lines += ["", _matched(rows, runs, worst), ""]
     return "\n".join(lines)
+
+
+def _worst(rows, program, setting):
+    """(largest relative peak-force difference, largest sway difference in deg) of a run
+    against the reference, from its rows."""
+    mine = [r for r in rows if (r["program"], r["setting"]) == (program, setting)]
+    force = [abs(float(r["difference"]) / float(r["reference"])) for r in mine
+             if r["quantity"].startswith("peak force")]
+    sway = [abs(float(r["difference"])) for r in mine if r["quantity"].startswith("sway")]
+    return max(force, default=np.nan), max(sway, default=np.nan)
+
+
+def _matched(rows, runs, worst):
+    """One sentence: the cheapest Exudyn run at least as accurate as the engine at its
+    default tolerance on both forces and sway, and its CPU time against the engine's."""
+    default = ("cranefe", f"tolerance {DEFAULT_TOLERANCE:g}")
+    if default not in worst:
+        return ""
+    f0, s0 = worst[default]
+    cpu = {(r["program"], r["setting"]): float(r["value"]) for r in rows
+           if r["quantity"] == "CPU time / cranefe default"}
+    better = [k for k in runs if k[0].startswith("Exudyn") and worst[k][0] <= f0
+              and worst[k][1] <= s0]
+    head = (f"At the default tolerance {DEFAULT_TOLERANCE:g} the engine is within "
+            f"{_e(f0)} of the reference's peak forces and {_e(s0)} deg of its sway; ")
+    if not any(k[0].startswith("Exudyn") for k in runs):
+        return head + "Exudyn was not run."
+    if not better:
+        return head + "no Exudyn step tried is as accurate on both."
+    k = min(better, key=lambda k: cpu[k])
+    return head + (f"{k[0]} at {k[1]} is as accurate on both ({_e(worst[k][0])}, "
+                   f"{_e(worst[k][1])} deg) at {cpu[k]:.2g} times the engine's CPU time.")
 
 
 def accuracy_markdown(cost):
