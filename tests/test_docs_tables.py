@@ -138,3 +138,21 @@ def test_validation_page_is_the_csv():
         [[r["case"], r["kind"], r["reference"], r["max_relative_error"]] for r in rows]
     assert any("vs OpenSeesPy" in r["case"] for r in rows)         # present or missing
     assert any("vs Exudyn" in r["case"] for r in rows)
+
+
+def test_operation_tables_are_the_csvs():
+    """docs/operations.md ("Accuracy and cost", "Comparison with Exudyn") and the
+    operation engine's table in docs/accuracy.md are what `cranefe study operations`
+    renders from results/operation_cost.csv, operation_cost_orders.csv and
+    operation_peers.csv (it rewrites the blocks between its markers); every bundled
+    operation scene is in them, and Exudyn's rows, present or missing."""
+    from cranefe.studies import operations as op
+    cost, orders = results("operation_cost.csv"), results("operation_cost_orders.csv")
+    peers = results("operation_peers.csv")
+    page = open(os.path.join(ROOT, "docs", "operations.md")).read()
+    assert op.block(page, "cost") == op.cost_markdown(cost, orders).strip("\n")
+    assert op.block(page, "peers") == op.peers_markdown(peers).strip("\n")
+    assert op.block(open(DOC).read(), "engine") == op.accuracy_markdown(cost).strip("\n")
+    assert {r["scene"] for r in cost} == {r["scene"] for r in peers} == set(op.SCENES)
+    assert {r["scene"] for r in peers if r["program"].startswith("Exudyn")} == set(op.SCENES)
+    assert {r["scene"] for r in cost if r["method"] == "scipy Radau"}     # the cross-check

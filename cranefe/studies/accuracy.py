@@ -8,7 +8,8 @@ import time
 from importlib import import_module
 
 DESCRIPTION = "every accuracy study (errors vs exact answers and their cost), one run"
-ACCURACY = ("ropes", "drive", "eigensolvers", "damping", "transient", "luffing")
+ACCURACY = ("ropes", "drive", "eigensolvers", "damping", "transient", "luffing",
+            "operations")
 
 
 def run(outdir, quick=False):
