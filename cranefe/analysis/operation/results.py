@@ -232,10 +232,10 @@ class Recorder:
                 spd.append(ev.omega[d.index])
                 tq.append(self._drum_torque(ev, d))
             else:
-                s, ds, _ = d.motion(ev.t)
+                s, ds = m.joint_state(d, ev.t, q, v)
                 pos.append(s)
                 spd.append(ds)
-                tq.append(np.nan)
+                tq.append(m.joint_drive_torque(d, ev.t, ds))
         sway = [self._angle(ev, k) for k in range(len(m.free))]
         self.samples.append((ev.t, ev.X[self.mass_nodes].copy(), F, pos, spd, tq, sway))
 
@@ -309,6 +309,7 @@ class Recorder:
                 labels.append(f"{nm}.height")
             else:
                 labels += [f"{nm}.{a}" for a in ("xz" if model.planar else "xyz")]
+        labels += [f"joint {jc['drive'].name}" for jc in m.jc]      # m, or arc m
         labels += [f"drum {model.drums[k].name}" for k in m.qdrums]
         return OperationResult(
             model.name, model.scene or "", model.effects.as_dict(), tuple(labels),
