@@ -496,14 +496,15 @@ class Mechanism:
         """Span-difference Jacobians over all metre coordinates D (ns, 3, nx), the second
         derivatives along each joint coordinate DJJ (ns, 3, nJ), and the nodes'
         derivatives XJ (nn, 3, nJ) (zero off the joint's subtree)."""
-        XJ = np.zeros((self.nn, 3, self.nJ))
-        XJJ = np.zeros((self.nn, 3, self.nJ))
+        ns, nJ = len(self.span_a), self.nJ
+        DJ = np.zeros((ns, 3, nJ))
+        DJJ = np.zeros((ns, 3, nJ))
         for c, (jc, (_, Rq, pq, Rqq, pqq)) in enumerate(zip(self.jc, jm)):
-            XJ[jc["nodes"], :, c] = jc["Xr"] @ Rq.T + pq
-            XJJ[jc["nodes"], :, c] = jc["Xr"] @ Rqq.T + pqq
-        a, b = self.span_a, self.span_b
-        D = np.concatenate([self.D, XJ[b] - XJ[a]], axis=2)
-        return D, XJJ[b] - XJJ[a], XJ
+            # span ends on the joint's subtree (index arrays made at setup)
+            for idx, Xr, sg in jc["span_ends"]:
+                DJ[idx, :, c] += sg * (Xr @ Rq.T + pq)
+                DJJ[idx, :, c] += sg * (Xr @ Rqq.T + pqq)
+        return np.concatenate([self.D, DJ], axis=2), DJJ, None
 
     def _joint_forces(self, t, q, v, jm, F, K, C):
         """Add gravity, the velocity-dependent inertia (Kane) and the drive of every joint
@@ -645,6 +646,12 @@ class Mechanism:
         self.Fg = np.concatenate([self.E.T @ (np.repeat(self.free_mass, 3) *
                                               np.tile(self.g, nf)), np.zeros(self.nJ)])
         self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
+        coords = self.model.coords
+        for jc in self.jc:
+            on = np.isin(self.span_b, jc["nodes"]), np.isin(self.span_a, jc["nodes"])
+            jc["span_ends"] = [(np.flatnonzero(m), coords[ends[m]], sg) for m, ends, sg in
+                               ((on[0], self.span_b, 1.0), (on[1], self.span_a, -1.0))
+                               if m.any()]
 
     def evaluate(self, t, q, v, taut, kin=None, damping=True, powers=True):
         """Forces and tangents at (t, q, v); with powers=False the power terms of the
@@ -779,7 +786,9 @@ class Mechanism:
         if self.nJ:
             # the nodes a joint coordinate carries: only the prescribed part of their
             # velocity is fed in from outside (the rest is the coordinate's own motion)
-            V = V - np.einsum("nij,j->ni", XJ, v[self.nc:self.nx])
+            V = V.copy()
+            for c, (jc, (_, Rq, pq, _, _)) in enumerate(zip(self.jc, jm)):
+                V[jc["nodes"]] -= (jc["Xr"] @ Rq.T + pq) * v[self.nc + c]
         Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
             np.where(self.kin_a[:, None], V[self.span_a], 0.0)
         rVk = self.A @ np.einsum("si,si->s", fe, Vk)
@@ -831,7 +840,11 @@ class Mechanism:
     def _static(self, model):
         """Static tensions of the reference geometry (drums held, elastic stiffness
         only, as model-format.md "Static state"): S0 = c r u with K_e u = F_gravity; the
-        geometry must then be in equilibrium (checked). L0_ref = L_ref exp(-S0/EA)."""
+        geometry must then be in equilibrium (checked). L0_ref = L_ref exp(-S0/EA).
+
+        Length: one least-squares statics over the loads and free joints, with the check
+        and message of each way it can fail.
+        """
         file = model.scene_file or model.file
         self.damped = model.effects.damping != "none"
         nr, ns = len(self.ropes), len(self.sp_k)
