@@ -257,6 +257,9 @@ def test_bad_joint_drives(tmp_path, capsys):
         (SLEW, "{hinge: slew, profile: {type: table, speed: [[0, 0.1]]}, gear_ratio: 3}",
          "analysis.drives.d.gear_ratio"),
         (SLEW, "{hinge: slew, torque: 5, ramp: -1}", "analysis.drives.d.ramp"),
+        (SLEW, "{linear: nope, profile: {type: table, speed: [[0, 0.1]]}}",
+         "analysis.drives.d.linear"),
+        (CYLINDER, "{linear: cyl, force: 5}", "analysis.drives.d.force"),
     ]
     for text, drive, entry in cases:
         path = scene(tmp_path, text, f"  duration: 5\n  drives:\n    d: {drive}\n")
@@ -420,3 +423,106 @@ def test_luffing_by_rope_example(capsys):
     assert res.sway_max_deg[0] > 0.5
     assert res.energy_error < 1e-5
     assert main(["simulate", str(path), "--json"]) == 0
+
+
+# ----------------------------------------------------------------- luffing by a linear drive
+
+CYLINDER = """cranefe: 1
+name: boom luffed by a cylinder
+plane: xz
+nodes:
+  O: [0, 0, 0]
+  A: [4, 0, 0]
+  C: [3, 0, 4]
+  B: [8, 0, 8]
+  H: [8, 0, 0]
+ground: [O, A]
+masses: {H: 1000}
+bodies:
+  boom: {mass: 2000, com: [4, 0, 4], inertia: 2.0e4, nodes: [O, C, B]}
+joints:
+  - {name: foot, type: hinge, bodies: [ground, boom], at: O, axis: [0, 1, 0]}
+linear_drives:
+  cyl: {nodes: [A, C], pinion_radius: 0.1, gear_ratio: 10}
+ropes:
+  hoist: {EA: 1.0e6, path: [B, H]}
+"""
+
+
+def test_cylinder_luffing_follows_the_law_of_cosines(tmp_path):
+    """A boom hinged at O, a cylinder from A (ground) to C (boom) lengthened by 1 m on a
+    trapezoid: the angle at O between OA and OC obeys d^2 = a^2 + c^2 - 2 a c cos(gamma),
+    so the boom turns by gamma(t) - gamma_ref (the tip B turned about O): the engine's
+    kinematic nodes to 1e-10 m; their velocities and accelerations equal the central
+    differences of the positions (to the differences' own error, 1e-6); the load
+    swings below the tip and the energy balance closes (< 1e-6 at tolerance 1e-8)."""
+    path = scene(tmp_path, CYLINDER, "  duration: 9\n  tolerance: 1.0e-8\n  drives:\n"
+                 "    c: {linear: cyl, profile: {type: trapezoid, distance: 1.0, v_max: 0.2,"
+                 " a_max: 0.1}}\n")
+    model = load(path)
+    mech = mechanism(model)
+    a, c = 4.0, 5.0
+    gamma_ref = np.arctan2(4, 3)
+    d_ref = np.hypot(1, 4)
+    motion = mech.spec.drives[0].motion
+    idx = model.node_index
+    for t in (0.0, 1.3, 3.7, 6.1, 9.7):             # away from the kinks 2, 5, 7 s
+        d = d_ref + motion(t)[0]
+        gamma = np.arccos((a * a + c * c - d * d) / (2 * a * c))
+        turn = gamma - gamma_ref                      # OC turns away from OA: up, about -y
+        X, V, A, _ = mech.kinematics(t)
+        B = np.array([8 * np.cos(turn) - 8 * np.sin(turn), 0,
+                      8 * np.sin(turn) + 8 * np.cos(turn)])
+        np.testing.assert_allclose(X[idx["B"]], B, atol=1e-10)
+        assert np.linalg.norm(X[idx["C"]] - X[idx["A"]]) == pytest.approx(d, abs=1e-10)
+        h = 1e-4
+        Xp, Xm = mech.kinematics(t + h)[0], mech.kinematics(t - h)[0] if t > 0 else None
+        if Xm is not None:
+            np.testing.assert_allclose(V, (Xp - Xm) / (2 * h), atol=1e-6)
+            np.testing.assert_allclose(A, (Xp - 2 * X + Xm) / h**2, atol=1e-5)
+    res = simulate(model)
+    assert res.drive_position[-1, 0] == pytest.approx(1.0, abs=1e-12)
+    assert res.sway_max_deg[0] > 0.1
+    assert res.energy_error < 1e-6
+
+
+def test_portal_crane_luffed_by_its_rack_equals_the_luffing_kinematics(tmp_path):
+    """The portal crane's four-bar level-luffing linkage (models/portal_crane_luffing.yaml)
+    moved by its rack (linear drive A-C) lengthened 0.6 m (the boom down by ~9 deg):
+    at every time the boom angle
+    alpha of the engine makes the rack's length d_ref + s(t) (to 1e-10 m), and the
+    counterweight W on its rocker sits where the luffing analysis' kinematics
+    (`Linkage.state`) puts it at that alpha, alpha found independently by Brent's method
+    on the rack length (1e-9 m)."""
+    from scipy.optimize import brentq
+    from cranefe.analysis.luffing.kinematics import Linkage
+    portal = Path(__file__).resolve().parents[1] / "models" / "portal_crane_luffing.yaml"
+    path = tmp_path / "s.yaml"
+    path.write_text(f"cranefe: 1\nscene: t\nmodel: {portal}\nanalysis:\n  type: operation\n"
+                    "  duration: 6\n  output_step: 0.25\n  drives:\n    luff: {linear: luffing,"
+                    " profile: {type: trapezoid, distance: 0.6, v_max: 0.2, a_max: 0.2}}\n")
+    model = load(str(path))
+    res = simulate(model)
+    link = Linkage(model, "boom", "O", "B")
+    idx = model.node_index
+    A, C = idx["A"], idx["C"]
+    d_ref = np.linalg.norm(model.coords[C] - model.coords[A])
+    boom = [b.name for b in model.bodies].index("boom")
+
+    def length(alpha):
+        st = link.state([alpha])
+        XC = link._point(st.q, boom, C)[0][0]
+        return np.linalg.norm(XC - model.coords[A][[0, 2]])
+
+    motion = parse(model).drives[0].motion
+    k = res.mass_names.index("W")
+    rocker = [b.name for b in model.bodies].index("rocker")
+    for i in range(0, len(res.times), 3):
+        t = res.times[i]
+        target = d_ref + motion(t)[0]
+        alpha = brentq(lambda x: length(x) - target, link.alpha_ref - 0.35,
+                       link.alpha_ref + 0.1, xtol=1e-14)
+        st = link.state([alpha])
+        W = link._point(st.q, rocker, idx["W"])[0][0]
+        np.testing.assert_allclose(res.mass_position[i, k][[0, 2]], W, atol=1e-9)
+    assert res.drive_position[-1, 0] == pytest.approx(0.6, abs=1e-12)

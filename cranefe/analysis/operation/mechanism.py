@@ -22,6 +22,7 @@ from ...errors import ModelError
 from ...model.model import GROUND
 from ... import elements as kernels
 from .joints import joint_jacobian, pair, subtree_mass
+from .linkage import LinkageDrive
 
 
 @dataclass
@@ -84,7 +85,9 @@ class Mechanism:
         be a tree joint whose loop (if any) is closed only by held joints of static
         bodies."""
         nb = len(model.bodies)
-        driven = {d.index: d for d in self.spec.drives if d.target != "drum"}
+        driven = {d.index: d for d in self.spec.drives if d.target in ("hinge", "slider")}
+        linear = [d for d in self.spec.drives if d.target == "linear"]
+        self.linear = LinkageDrive(model, linear[0], driven) if linear else None
         parent = {}
         order = []
         frontier = [GROUND]
@@ -107,9 +110,11 @@ class Mechanism:
             p, k = parent[b]
             if k in driven or p in moving:
                 moving.add(b)
+        if self.linear is not None:
+            moving |= set(self.linear.bodies)
         self.moving = moving
         for k, j in enumerate(model.joints):
-            if k in used:
+            if k in used or (self.linear is not None and k in self.linear.joints):
                 continue
             if any(b in moving for b in j.bodies if b != GROUND):
                 raise ModelError(
@@ -150,7 +155,11 @@ class Mechanism:
             states = [self._rest if d.coordinate else d.motion(t)
                       for d in self._chain_drives]
         c = 0
+        link = self.linear.motions(t) if self.linear is not None else None
         for b, p, d, sign, hinge, K, K2, point, axis in self._chain:
+            if link is not None and b in link:
+                out[b] = link[b]
+                continue
             if d is None:
                 out[b] = out[p]
                 continue
@@ -451,6 +460,8 @@ class Mechanism:
         states = tuple(self._rest if d.coordinate else d.motion(t)
                        for d in self._chain_drives)
         drums = tuple(d.motion(t) for _, d in self._profile_drums)
+        if self.linear is not None:
+            drums = drums + (self.linear.drive.motion(t),)
         key = (states, drums)
         if key == self._kin_key:
             return self._kin_last

@@ -22,7 +22,8 @@ PROFILE_KEYS = {
     "table": ({"speed"}, set()),
 }
 ANGLE_KEYS = {"distance", "v_max", "a_max", "j_max", "speed"}   # _deg variants on hinges
-UNITS = {"drum": ("rad", "rad/s"), "hinge": ("rad", "rad/s"), "slider": ("m", "m/s")}
+UNITS = {"drum": ("rad", "rad/s"), "hinge": ("rad", "rad/s"), "slider": ("m", "m/s"),
+         "linear": ("m", "m/s")}
 
 
 @dataclass(frozen=True)
@@ -105,7 +106,7 @@ def parse(model):
                    for name, spec in raw.items())
     seen = {}
     for d in drives:
-        key = (d.target == "drum", d.index)
+        key = (d.target if d.target in ("drum", "linear") else "joint", d.index)
         if key in seen:
             r.fail(d.entry, f"drives the same {d.target} as drive '{seen[key]}'; give one "
                    "drive per drum or joint")
@@ -132,13 +133,16 @@ def _drive(model, r, name, spec, duration):
     if not isinstance(spec, dict):
         r.fail(e, "must be a mapping such as {drum: NAME, profile: {...}} or {hinge: "
                "JOINT, torque: ...}")
-    r.keys(spec, e, {"drum", "hinge", "slider", "profile", "torque", "force", "motor",
-                     "ramp", "free", "gear_ratio", "rotor_inertia"})
-    targets = [k for k in ("drum", "hinge", "slider") if k in spec]
+    r.keys(spec, e, {"drum", "hinge", "slider", "linear", "profile", "torque", "force",
+                     "motor", "ramp", "free", "gear_ratio", "rotor_inertia"})
+    targets = [k for k in ("drum", "hinge", "slider", "linear") if k in spec]
     if len(targets) != 1:
         r.fail(e, "say what the drive moves: exactly one of drum: NAME, hinge: JOINT "
-               "(slewing, luffing) or slider: JOINT (trolley travel)")
+               "(slewing, luffing), slider: JOINT (trolley travel) or linear: NAME (a "
+               "luffing cylinder or rack of the model's linear_drives)")
     target = targets[0]
+    if target == "linear":
+        return _linear(model, r, name, spec, e)
     load_key = "force" if target == "slider" else "torque"
     wrong = "torque" if target == "slider" else "force"
     if wrong in spec:
@@ -208,6 +212,24 @@ def _drive(model, r, name, spec, duration):
     drive = Drive(name, target, index, "profile", motion=motion, entry=e)
     _check_travel(model, r, drive, duration)
     return drive
+
+
+def _linear(model, r, name, spec, e):
+    """A linear drive (luffing cylinder, rack) whose length follows a profile (m)."""
+    names = [d.name for d in model.linear_drives]
+    if spec["linear"] not in names:
+        r.fail(f"{e}.linear", f"unknown linear drive '{spec['linear']}'; linear_drives of "
+               f"the model: {', '.join(names) or 'none'}")
+    extra = set(spec) - {"linear", "profile"}
+    if extra or "profile" not in spec:
+        r.fail(f"{e}.{sorted(extra)[0]}" if extra else e, "a linear drive follows a "
+               "profile of its length change (m): give profile: {...} only")
+    raw = spec["profile"]
+    motion = profiles.combine([_motion(r, p, f"{e}.profile[{k}]", False)
+                               for k, p in enumerate(raw)]) if isinstance(raw, list) \
+        else _motion(r, raw, f"{e}.profile", False)
+    return Drive(name, "linear", names.index(spec["linear"]), "profile", motion=motion,
+                 entry=e)
 
 
 def _motion(r, p, e, angles):
