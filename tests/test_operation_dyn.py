@@ -272,6 +272,14 @@ def test_bad_joint_drives(tmp_path, capsys):
     assert main(["simulate", str(path)]) == 2
     err = capsys.readouterr().err
     assert "analysis.drives.e" in err and "not solved yet" in err, err
+    # sway off with the load guided by a joint coordinate: refused (not yet)
+    path = scene(tmp_path, CART, "  duration: 5\n  drives:\n    d: {slider: travel, "
+                 "force: 5}\n", MLOAD=100, MCART=100, EAVAL=1e8)
+    path.write_text(path.read_text().replace("scene: test\n", "scene: test\neffects: "
+                                             "{sway: false}\n"))
+    assert main(["simulate", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "analysis.drives.d" in err and "sway on" in err, err
     # a free jib that no rope holds: not a static state
     path = scene(tmp_path, LUFF, "  duration: 5\n  drives:\n    d: {hinge: luff, "
                  "free: true}\n")

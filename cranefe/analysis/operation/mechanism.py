@@ -396,6 +396,17 @@ class Mechanism:
         self.qx_ref = E.T @ model.coords[self.free].ravel()
         # with sway off: the kinematic root each mass's horizontal position follows
         self.root = np.array([self._root(model, k) for k in range(nf)], dtype=int)
+        if not self.sway:
+            for k in range(nf):
+                if int(self.root[k]) in self.jnodes:
+                    jc = next(c for c in self.jc if int(self.root[k]) in c["nodes"])
+                    raise ModelError(
+                        f"with sway: false the load at node "
+                        f"'{model.node_names[self.free[k]]}' is guided horizontally by "
+                        f"the bodies that drive '{jc['drive'].name}' moves as a "
+                        "coordinate; its horizontal inertia on that joint is not solved "
+                        "yet: turn sway on (or prescribe the joint's motion)", file,
+                        jc["drive"].entry)
 
     def _above(self, model, i):
         """The node a point mass hangs from: the other end of its highest rope span or
