@@ -534,3 +534,42 @@ def test_portal_crane_luffed_by_its_rack_equals_the_luffing_kinematics(tmp_path)
         W = link._point(st.q, rocker, idx["W"])[0][0]
         np.testing.assert_allclose(res.mass_position[i, k][[0, 2]], W, atol=1e-9)
     assert res.drive_position[-1, 0] == pytest.approx(0.6, abs=1e-12)
+
+
+RADIAL = """cranefe: 1
+name: trolley free on a slewing jib
+nodes:
+  O: [0, 0, 0]
+  T: [0, 0, 30]
+  K: [10, 0, 30]
+ground: [O]
+bodies:
+  jib: {mass: 5000, com: [10, 0, 30], inertia: [1.0e3, 1.0e5, 1.0e5], nodes: [O, T]}
+  trolley: {mass: 500, com: [10, 0, 30.5], inertia: [10, 20, 30], nodes: [K]}
+joints:
+  - {name: slew, type: hinge, bodies: [ground, jib], at: O, axis: [0, 0, 1]}
+  - {name: travel, type: slider, bodies: [jib, trolley], at: K, axis: [1, 0, 0],
+     range: [-2, 40]}
+"""
+
+
+def test_free_trolley_on_a_slewing_jib_runs_out_by_the_centrifugal_force(tmp_path):
+    """The jib slews at a prescribed constant w from t = 0 and the trolley is free on its
+    slider (force 0): in the turning frame r'' = w^2 r (the Coriolis force is taken by
+    the slider), so from rest at r0 = 10 m, r = r0 cosh(w t) - the carried acceleration
+    of a prescribed parent in Kane's term. To 1e-6 of the run-out at tolerance 1e-10
+    (the trapezoidal rule's error on an exponential (w h)^2/12 per unit w t); the
+    energy balance, with the work of the prescribed slewing on the trolley
+    int (x'' - g) . v_p dm, closes to 1e-6."""
+    w = 0.3
+    path = scene(tmp_path, RADIAL, "  duration: 5\n  tolerance: 1.0e-10\n  drives:\n"
+                 f"    s: {{hinge: slew, profile: {{type: table, speed: [[0, {w}]]}}}}\n"
+                 "    t: {slider: travel, force: 0}\n")
+    res = simulate(load(path))
+    k = res.drive_names.index("t")
+    t = res.times
+    run = 10 * (np.cosh(w * t) - 1)
+    np.testing.assert_allclose(res.drive_position[:, k], run, atol=1e-6 * run[-1])
+    np.testing.assert_allclose(res.drive_speed[:, k], 10 * w * np.sinh(w * t),
+                               atol=1e-6 * 10 * w * np.sinh(w * t[-1]))
+    assert res.energy_error < 1e-6
