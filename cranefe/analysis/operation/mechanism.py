@@ -1,8 +1,11 @@
 """The equations of an operation scene in its coordinates (docs/operations.md).
 
 Coordinates q: the Cartesian positions of the point masses not carried by bodies (3 each,
-2 in a plane: xz model; with `sway: false` only the height), then the angles of drums
-driven by a torque or a motor. Bodies move rigidly by the prescribed joint motions
+2 in a plane: xz model; with `sway: false` only the height), then the positions of
+joints driven by a torque, force or motor or free (the arc rho phi of a hinge, the
+travel of a slider; the bodies they carry enter by their exact kinetic energy,
+joints.py), then the angles of drums driven by a torque or a motor. A linear drive
+moves its planar linkage kinematically (linkage.py). Bodies move rigidly by the prescribed joint motions
 (exact rotations, `cranefe.elements.hinge_motion`); a prescribed drum's angle is a known function
 of time; every other joint and drum is held. Ropes and axial springs that touch a
 point mass carry force; the others only connect bodies whose motion is prescribed.
@@ -289,7 +292,8 @@ class Mechanism:
             m, s1, Th = subtree_mass(model, sorted(sub), nodes)
             hinge = j.type == "hinge"
             a = np.asarray(model.coords[j.at], float)
-            pts = [model.coords[i] for i in nodes] + [model.bodies[x].com for x in sub]
+            pts = [model.coords[i] for i in nodes] + [model.bodies[x].com for x in sub
+                                                       if model.bodies[x].mass > 0]
             if hinge:
                 r = [np.linalg.norm(np.cross(np.asarray(x, float) - a, j.axis))
                      for x in pts]
