@@ -592,3 +592,20 @@ def test_slewing_torque_ramp(tmp_path):
                    M / J * (r**2 / 6 + r * (t - r) / 2 + (t - r)**2 / 2))
     np.testing.assert_allclose(res.drive_position[:, 0], phi, atol=1e-5 * phi[-1])
     assert res.drive_torque[-1, 0] == pytest.approx(M)
+
+
+def test_trolley_pushed_past_its_range_stops_the_run(tmp_path, capsys):
+    """A constant force pushes the trolley (range [-1, 2] m) past its end (the centre of
+    mass F t^2 / (2 (M + m)) reaches 2 m at 3.5 s, the trolley a little earlier): the
+    engine has no end stops, so the run stops there with AnalysisError naming the time
+    and the joint (exit 1), the results up to then kept (CSV written)."""
+    text = CART.replace("range: [-50, 50]", "range: [-1, 2]")
+    path = scene(tmp_path, text, "  duration: 10\n  drives:\n    c: {slider: travel, "
+                 "force: 1000}\n", MLOAD=2000, MCART=1000, EAVAL=1.0e8)
+    csv = tmp_path / "run.csv"
+    assert main(["simulate", str(path), "--csv", str(csv)]) == 1
+    err = capsys.readouterr().err
+    assert "past the end of its range" in err and "travel" in err, err
+    rows = csv.read_text().splitlines()
+    t_end = float(rows[-1].split(",")[0])
+    assert 2.0 < t_end < 6.0

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...errors import ModelError
+from ...errors import AnalysisError, ModelError
 from ...model.model import GROUND
 from ... import elements as kernels
 from .joints import joint_jacobian, pair, subtree_mass
@@ -594,6 +594,26 @@ class Mechanism:
                 T += 0.5 * d.rotor_inertia * (d.gear_ratio * w) ** 2
             Vg -= self.g @ (R @ s1 + m * p)
         return T, float(Vg)
+
+    def check_range(self, ev, t):
+        """A joint coordinate past its range (the engine has no end stops): AnalysisError
+        naming the time (the integrator keeps the results up to it)."""
+        if not self.nJ:
+            return
+        q = ev._ctx[4][2]
+        for c, jc in enumerate(self.jc):
+            j = self.model.joints[jc["joint"]]
+            if j.range is None:
+                continue
+            s = q[self.nc + c] / jc["rho"]
+            if s < j.range[0] - 1e-9 or s > j.range[1] + 1e-9:
+                f, u = (1.0, "m") if not jc["hinge"] else (180 / np.pi, "deg")
+                raise AnalysisError(
+                    f"at t = {t:.6g} s {j.name or j.entry} (drive '{jc['drive'].name}') "
+                    f"reached {s * f:.6g} {u}, past the end of its range "
+                    f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u}: the engine has no end "
+                    "stops; likely cause: a drive force or torque that does not stop it; "
+                    f"the results up to t = {t:.6g} s are kept")
 
     def joint_drive_torque(self, d, t, speed):
         """Torque (N m) or force (N) of a joint drive at t and joint speed; nan for a
