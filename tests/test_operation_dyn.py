@@ -396,7 +396,7 @@ def test_luffing_by_rope_settles_at_the_moment_balance_angle(tmp_path):
     L0 = _luffing_length(0.0) / lam + 0.2 * 10 / lam
     phi = brentq(lambda p: EA * np.log(_luffing_length(p) / L0) -
                  _luffing_tension(p, hoist=False), -0.2, 0.2)
-    assert phi > 0.01                          # the boom went down by ~1 deg
+    assert phi > 0.02                          # the boom went down by 1.63 deg
     assert res.drive_position[-1, 0] == pytest.approx(phi, abs=1e-7)
     assert res.energy_error < 1e-6
 
