@@ -380,7 +380,8 @@ def test_energy_balance_with_drives_damping_and_slack(tmp_path):
     ("{hinge: slew, profile: {type: jump, distance: 1}}", "analysis.drives.d.profile.type"),
     ("{hinge: nope, profile: {type: trapezoid, distance: 1, v_max: 1, a_max: 1}}",
      "analysis.drives.d.hinge"),
-    ("{hinge: slew, torque: 5}", "analysis.drives.d.torque"),
+    ("{slider: travel, torque: 5}", "analysis.drives.d.torque"),
+    ("{hinge: slew, free: false}", "analysis.drives.d.free"),
 ])
 def test_bad_drives_name_file_and_entry(tmp_path, capsys, drive, entry):
     path = scene(tmp_path, SLEWING, f"  duration: 60\n  drives:\n    d: {drive}\n", R=10,

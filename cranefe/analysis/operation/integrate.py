@@ -263,6 +263,7 @@ def simulate(model, progress=None, initial=None):
             t, q, v, a, ev = t + hh, q1, v1, a1, ev1
             st.steps += 1
             _two_blocking(mech, st.ops.span_lengths(ev), t)
+            mech.check_range(ev, t)
             if st.steps > MAX_STEPS:
                 raise AnalysisError(f"more than {MAX_STEPS} steps at t = {t:.6g} s; raise "
                                     "analysis.tolerance")

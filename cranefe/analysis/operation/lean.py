@@ -82,7 +82,8 @@ class Lean:
     @staticmethod
     def covers(mech):
         return (len(mech.ropes) > 0 and not mech.qdrums and not len(mech.sp_k)
-                and not getattr(mech, "nJ", 0) and len(mech.free) > 0)
+                and not getattr(mech, "nJ", 0) and len(mech.free) > 0
+                and getattr(mech, "linear", None) is None)   # linkages: Mechanism
 
     def __init__(self, mech):
         m = self.m = mech

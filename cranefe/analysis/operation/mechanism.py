@@ -1,8 +1,11 @@
 """The equations of an operation scene in its coordinates (docs/operations.md).
 
 Coordinates q: the Cartesian positions of the point masses not carried by bodies (3 each,
-2 in a plane: xz model; with `sway: false` only the height), then the angles of drums
-driven by a torque or a motor. Bodies move rigidly by the prescribed joint motions
+2 in a plane: xz model; with `sway: false` only the height), then the positions of
+joints driven by a torque, force or motor or free (the arc rho phi of a hinge, the
+travel of a slider; the bodies they carry enter by their exact kinetic energy,
+joints.py), then the angles of drums driven by a torque or a motor. A linear drive
+moves its planar linkage kinematically (linkage.py). Bodies move rigidly by the prescribed joint motions
 (exact rotations, `cranefe.elements.hinge_motion`); a prescribed drum's angle is a known function
 of time; every other joint and drum is held. Ropes and axial springs that touch a
 point mass carry force; the others only connect bodies whose motion is prescribed.
@@ -18,9 +21,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...errors import ModelError
+from ...errors import AnalysisError, ModelError
 from ...model.model import GROUND
 from ... import elements as kernels
+from .joints import joint_jacobian, pair, subtree_mass
+from .linkage import LinkageDrive
 
 
 @dataclass
@@ -46,6 +51,7 @@ class Eval:
     P_diss: float            # power dissipated by the dashpots (W)
     P_wound: float           # elastic energy carried onto the drums with the rope (W)
     T_guided: float = 0.0    # horizontal kinetic energy of loads without sway (J)
+    joint_torque: np.ndarray = None   # (nJ,) torque (N m) / force (N) of joint drives
 
 
 class Mechanism:
@@ -68,10 +74,12 @@ class Mechanism:
                                  "massless")
         self._tree(model)
         self._nodes(model)
+        self._joint_setup(model)
         self._elements(model)
         self._drums(model)
         self._projections()
         self._chain_setup(model)
+        self._joint_mass()
         self._static(model)
 
     # ----------------------------------------------------------------- kinematics
@@ -80,7 +88,9 @@ class Mechanism:
         be a tree joint whose loop (if any) is closed only by held joints of static
         bodies."""
         nb = len(model.bodies)
-        driven = {d.index: d for d in self.spec.drives if d.target != "drum"}
+        driven = {d.index: d for d in self.spec.drives if d.target in ("hinge", "slider")}
+        linear = [d for d in self.spec.drives if d.target == "linear"]
+        self.linear = LinkageDrive(model, linear[0], driven) if linear else None
         parent = {}
         order = []
         frontier = [GROUND]
@@ -103,9 +113,11 @@ class Mechanism:
             p, k = parent[b]
             if k in driven or p in moving:
                 moving.add(b)
+        if self.linear is not None:
+            moving |= set(self.linear.bodies)
         self.moving = moving
         for k, j in enumerate(model.joints):
-            if k in used:
+            if k in used or (self.linear is not None and k in self.linear.joints):
                 continue
             if any(b in moving for b in j.bodies if b != GROUND):
                 raise ModelError(
@@ -120,15 +132,37 @@ class Mechanism:
         free_bodies = [model.bodies[b].name for b in range(nb) if b not in parent]
         self.free_bodies = free_bodies
         self.driven_joints = driven
+        # joint coordinates: the subtree a torque/force/motor/free joint carries must be
+        # rigid (no moving joint below it): its mass matrix is then one constant number
+        for b in order:
+            p, k = parent[b]
+            if k not in driven:
+                continue
+            a = p
+            while a != GROUND:
+                pa, ka = parent[a]
+                if ka in driven and driven[ka].coordinate:
+                    raise ModelError(
+                        f"drive '{driven[k].name}' moves {model.joints[k].entry} on the "
+                        f"bodies that drive '{driven[ka].name}' carries as a coordinate; "
+                        "a torque, force, motor or free joint with a moving joint below "
+                        "it is not solved yet (prescribe the outer joint's motion with a "
+                        "profile)", model.scene_file or model.file, driven[k].entry)
+                a = pa
 
     def body_motions(self, t, states=None):
         """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity); `states`:
         the driven joints' (s, s', s'') at t in the order of the chain, if known."""
         out = {GROUND: kernels.IDENTITY_MOTION}
         if states is None:
-            states = [d.motion(t) for d in self._chain_drives]
+            states = [self._rest if d.coordinate else d.motion(t)
+                      for d in self._chain_drives]
         c = 0
+        link = self.linear.motions(t) if self.linear is not None else None
         for b, p, d, sign, hinge, K, K2, point, axis in self._chain:
+            if link is not None and b in link:
+                out[b] = link[b]
+                continue
             if d is None:
                 out[b] = out[p]
                 continue
@@ -171,6 +205,7 @@ class Mechanism:
                           np.asarray(model.coords[j.at], float), j.axis))
         self._chain = chain
         self._chain_drives = [c[2] for c in chain if c[2] is not None]
+        self._rest = (0.0, 0.0, 0.0)
         self._kin_key = self._kin_last = None
         groups = []
         for b in [GROUND] + list(self.order):
@@ -184,6 +219,24 @@ class Mechanism:
         self._qd = np.array(self.qdrums, dtype=int)
         self._profile_drums = [(k, d) for k, d in enumerate(self.drum_drive)
                                if d is not None and d.kind == "profile"]
+
+    def _joint_mass(self):
+        """The joint coordinates' chain entries and generalised masses."""
+        # joint coordinates: M = int |dx/du|^2 dm (+ the motor's rotor), u = rho phi
+        MJ = np.zeros(self.nJ)
+        mot = self.body_motions(0.0)
+        for c, jc in enumerate(self.jc):
+            ch = next(x for x in self._chain if x[0] == jc["child"])
+            jc["chain"] = ch
+            Rq, pq, _, _ = joint_jacobian(mot[jc["parent"]], jc["hinge"], ch[5], ch[6],
+                                          ch[7], ch[8], jc["sign"], 0.0)
+            d = jc["drive"]
+            MJ[c] = (pair(Rq, pq, Rq, pq, jc["m"], jc["s"], jc["Th"])
+                     + d.rotor_inertia * d.gear_ratio ** 2) / jc["rho"] ** 2
+        self.MJ = MJ
+        self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3), MJ,
+                                 self.J])
+        self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
 
     def _nodes(self, model):
         nn = self.nn
@@ -215,6 +268,51 @@ class Mechanism:
         self.kin = np.flatnonzero(carrier != -2)
         self.mass_nodes = np.array(sorted(mass_of), dtype=int)
 
+    def _joint_setup(self, model):
+        """Joint coordinates (torque, force, motor, free joints): the child body, the
+        rigid subtree it carries (bodies, nodes, mass properties) and the length scale
+        rho of a hinge (its coordinate is the arc u = rho phi, in metres like the
+        others; rho: the farthest point of the subtree from the axis)."""
+        self.jc = []
+        for b in self.order:
+            p, k = self.parent[b]
+            d = self.driven_joints.get(k)
+            if d is None or not d.coordinate:
+                continue
+            j = model.joints[k]
+            sub, stack = {b}, [b]
+            while stack:
+                x = stack.pop()
+                for c in self.order:
+                    if self.parent[c][0] == x and c not in sub:
+                        sub.add(c)
+                        stack.append(c)
+            nodes = np.array([i for i in range(self.nn) if self.carrier[i] in sub],
+                             dtype=int)
+            m, s1, Th = subtree_mass(model, sorted(sub), nodes)
+            hinge = j.type == "hinge"
+            a = np.asarray(model.coords[j.at], float)
+            pts = [model.coords[i] for i in nodes] + [model.bodies[x].com for x in sub
+                                                       if model.bodies[x].mass > 0]
+            if hinge:
+                r = [np.linalg.norm(np.cross(np.asarray(x, float) - a, j.axis))
+                     for x in pts]
+                rho = max(r + [0.0])
+                rho = rho if rho > 1e-9 * model.length_scale else model.length_scale
+            else:
+                rho = 1.0
+            if m <= 0:
+                raise ModelError(f"drive '{d.name}' moves {j.entry} as a coordinate, but "
+                                 "the bodies it carries have no mass; give them mass "
+                                 "(bodies.NAME.mass) or prescribe a profile",
+                                 model.scene_file or model.file, d.entry)
+            self.jc.append(dict(drive=d, joint=k, child=b, parent=p, hinge=hinge,
+                                nodes=nodes, Xr=model.coords[nodes], m=m, s=s1, Th=Th,
+                                rho=rho, sign=1.0 if j.bodies[1] == b else -1.0,
+                                chain=None))
+        self.nJ = len(self.jc)
+        self.jnodes = set(int(i) for c in self.jc for i in c["nodes"])
+
     def _elements(self, model):
         """Ropes and axial springs that touch a point mass (the others join bodies whose
         motion is prescribed: no force is computed for them).
@@ -229,7 +327,7 @@ class Mechanism:
         act, a, b, f, rid = [], [], [], [], []
         for k, rp in enumerate(model.ropes):
             nodes = set(rp.span_a.tolist()) | set(rp.span_b.tolist())
-            if not nodes & free:
+            if not nodes & (free | self.jnodes):
                 continue
             bad = nodes - ok
             if bad:
@@ -293,14 +391,26 @@ class Mechanism:
                         f"{np.linalg.norm(hor):.4g} m); move it or turn sway on", file,
                         f"nodes.{model.node_names[i]}")
                 dirs.append((k, self.up.copy()))
-        self.nx = len(dirs)
-        E = np.zeros((3 * nf, self.nx))
+        self.nc = len(dirs)                 # Cartesian coordinates of the point masses
+        self.nx = self.nc + self.nJ         # coordinates in metres (then drum angles)
+        E = np.zeros((3 * nf, self.nc))
         for c, (k, ax) in enumerate(dirs):
             E[3 * k:3 * k + 3, c] = ax
         self.E = E
         self.qx_ref = E.T @ model.coords[self.free].ravel()
         # with sway off: the kinematic root each mass's horizontal position follows
         self.root = np.array([self._root(model, k) for k in range(nf)], dtype=int)
+        if not self.sway:
+            for k in range(nf):
+                if int(self.root[k]) in self.jnodes:
+                    jc = next(c for c in self.jc if int(self.root[k]) in c["nodes"])
+                    raise ModelError(
+                        f"with sway: false the load at node "
+                        f"'{model.node_names[self.free[k]]}' is guided horizontally by "
+                        f"the bodies that drive '{jc['drive'].name}' moves as a "
+                        "coordinate; its horizontal inertia on that joint is not solved "
+                        "yet: turn sway on (or prescribe the joint's motion)", file,
+                        jc["drive"].entry)
 
     def _above(self, model, i):
         """The node a point mass hangs from: the other end of its highest rope span or
@@ -352,8 +462,9 @@ class Mechanism:
         self.end_radius = np.array([e[2] for e in ends], dtype=float)
         self.J = np.array([model.drums[k].reduced_inertia for k in self.qdrums])
         self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
-        self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3), self.J])
-        self.invM_x = 1.0 / self.M[:self.nx]
+        self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
+                                 np.zeros(self.nJ), self.J])
+        self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
 
     # ----------------------------------------------------------------- state at t
     def kinematics(self, t):
@@ -361,8 +472,11 @@ class Mechanism:
         prescribed drums' (theta, omega, alpha). The arrays are shared with the last
         call when every drive is in the same state (a crane at rest between moves):
         read them, never write."""
-        states = tuple(d.motion(t) for d in self._chain_drives)
+        states = tuple(self._rest if d.coordinate else d.motion(t)
+                       for d in self._chain_drives)
         drums = tuple(d.motion(t) for _, d in self._profile_drums)
+        if self.linear is not None:
+            drums = drums + (self.linear.drive.motion(t),)
         key = (states, drums)
         if key == self._kin_key:
             return self._kin_last
@@ -381,14 +495,157 @@ class Mechanism:
         self._kin_key, self._kin_last = key, (X, V, A, th)
         return X, V, A, th
 
-    def place(self, t, q, v, kin=None):
+    def joint_motions(self, t, q, v):
+        """Per joint coordinate: the child's motion (R, R', R''|_{u''=0}, p, p', p'')
+        at the coordinates' (u, u') and the prescribed drives' motion at t, and its
+        derivatives (R_u, p_u, R_uu, p_uu) by the coordinate u = rho s."""
+        nc = self.nc
+        states, c = [], 0
+        for d in self._chain_drives:
+            if d.coordinate:
+                jc = self.jc[c]
+                r = jc["rho"]
+                states.append((q[nc + c] / r, v[nc + c] / r, 0.0))
+                c += 1
+            else:
+                states.append(d.motion(t))
+        mot = self.body_motions(t, states)
+        out = []
+        for c, jc in enumerate(self.jc):
+            ch, r = jc["chain"], jc["rho"]
+            Rq, pq, Rqq, pqq = joint_jacobian(mot[jc["parent"]], jc["hinge"], ch[5], ch[6],
+                                              ch[7], ch[8], jc["sign"], q[nc + c] / r)
+            out.append((mot[jc["child"]], Rq / r, pq / r, Rqq / r**2, pqq / r**2))
+        return out
+
+    def _joint_spans(self, jm):
+        """Span-difference Jacobians over all metre coordinates D (ns, 3, nx), the second
+        derivatives along each joint coordinate DJJ (ns, 3, nJ), and the nodes'
+        derivatives XJ (nn, 3, nJ) (zero off the joint's subtree)."""
+        ns, nJ = len(self.span_a), self.nJ
+        DJ = np.zeros((ns, 3, nJ))
+        DJJ = np.zeros((ns, 3, nJ))
+        for c, (jc, (_, Rq, pq, Rqq, pqq)) in enumerate(zip(self.jc, jm)):
+            # span ends on the joint's subtree (index arrays made at setup)
+            for idx, Xr, sg in jc["span_ends"]:
+                DJ[idx, :, c] += sg * (Xr @ Rq.T + pq)
+                DJJ[idx, :, c] += sg * (Xr @ Rqq.T + pqq)
+        return np.concatenate([self.D, DJ], axis=2), DJJ, None
+
+    def _joint_forces(self, t, q, v, jm, F, K, C):
+        """Add gravity, the velocity-dependent inertia (Kane) and the drive of every joint
+        coordinate to F (and K, C); return the drives' torques (N m) or forces (N)."""
+        g, nc = self.g, self.nc
+        jt = np.zeros(self.nJ)
+        for c, (jc, (mo, Rq, pq, Rqq, pqq)) in enumerate(zip(self.jc, jm)):
+            i, r = nc + c, jc["rho"]
+            m, s1, Th = jc["m"], jc["s"], jc["Th"]
+            # gravity: int x_u . g dm = g . (R_u s + m p_u); d/du: g . (R_uu s + m p_uu)
+            F[i] += g @ (Rq @ s1 + m * pq)
+            K[i, i] -= g @ (Rqq @ s1 + m * pqq)
+            # Kane: -int x_u . x''|_{u''=0} dm (centrifugal, Coriolis, the prescribed
+            # parent's acceleration); zero for a rigid subtree turning about a fixed axis
+            F[i] -= pair(Rq, pq, mo[2], mo[5], m, s1, Th)
+            d = jc["drive"]
+            if d.kind == "torque":
+                tq, dtq = d.torque(t)[0], 0.0
+            elif d.kind == "motor":
+                gr = d.gear_ratio
+                Mm, dM = d.motor.torque(gr * v[i] / r)
+                tq, dtq = gr * Mm, gr * gr * dM
+            else:
+                tq = dtq = 0.0
+            jt[c] = tq
+            F[i] += tq / r
+            C[i, i] -= dtq / r ** 2
+        return jt
+
+    def _joint_power(self, ev, jm, q, v):
+        """Power of the joint drives (torque x speed) and of a prescribed parent on the
+        subtree it carries: int (x'' - g) . v_presc dm, v_presc the velocity field with
+        the coordinate held, x'' with u'' = F_u / M_u (the accepted state's)."""
+        nc, g = self.nc, self.g
+        P = 0.0
+        for c, (jc, (mo, Rq, pq, _, _)) in enumerate(zip(self.jc, jm)):
+            i, r = nc + c, jc["rho"]
+            P += ev.joint_torque[c] * v[i] / r
+            if jc["parent"] == GROUND or jc["parent"] not in self.moving:
+                continue
+            R, dR, ddR, p, dp, ddp = mo
+            au = ev.F[i] / self.M[i]
+            B, b = dR - Rq * v[i], dp - pq * v[i]
+            m, s1, Th = jc["m"], jc["s"], jc["Th"]
+            P += pair(ddR + Rq * au, ddp + pq * au, B, b, m, s1, Th) \
+                - g @ (B @ s1 + m * b)
+        return P
+
+    def _joint_energy(self, ev):
+        """Kinetic energy 1/2 int |x'|^2 dm and gravity potential -g . int x dm of the
+        subtrees of the joint coordinates."""
+        jm = ev._ctx[4][0]
+        T = Vg = 0.0
+        for c, (jc, (mo, *_)) in enumerate(zip(self.jc, jm)):
+            R, dR, _, p, dp, _ = mo
+            m, s1, Th = jc["m"], jc["s"], jc["Th"]
+            d = jc["drive"]
+            T += 0.5 * pair(dR, dp, dR, dp, m, s1, Th)
+            if d.rotor_inertia:              # the motor's rotor at i times joint speed
+                w = ev._ctx[4][3][self.nc + c] / jc["rho"]
+                T += 0.5 * d.rotor_inertia * (d.gear_ratio * w) ** 2
+            Vg -= self.g @ (R @ s1 + m * p)
+        return T, float(Vg)
+
+    def check_range(self, ev, t):
+        """A joint coordinate past its range (the engine has no end stops): AnalysisError
+        naming the time (the integrator keeps the results up to it)."""
+        if not self.nJ:
+            return
+        q = ev._ctx[4][2]
+        for c, jc in enumerate(self.jc):
+            j = self.model.joints[jc["joint"]]
+            if j.range is None:
+                continue
+            s = q[self.nc + c] / jc["rho"]
+            if s < j.range[0] - 1e-9 or s > j.range[1] + 1e-9:
+                f, u = (1.0, "m") if not jc["hinge"] else (180 / np.pi, "deg")
+                raise AnalysisError(
+                    f"at t = {t:.6g} s {j.name or j.entry} (drive '{jc['drive'].name}') "
+                    f"reached {s * f:.6g} {u}, past the end of its range "
+                    f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u}: the engine has no end "
+                    "stops; likely cause: a drive force or torque that does not stop it; "
+                    f"the results up to t = {t:.6g} s are kept")
+
+    def joint_drive_torque(self, d, t, speed):
+        """Torque (N m) or force (N) of a joint drive at t and joint speed; nan for a
+        prescribed joint, 0 for a free one."""
+        if d.kind == "torque":
+            return float(d.torque(t)[0])
+        if d.kind == "motor":
+            return d.gear_ratio * d.motor.torque(d.gear_ratio * speed)[0]
+        return 0.0 if d.kind == "free" else np.nan
+
+    def joint_state(self, d, t, q, v):
+        """(position, speed) of a joint drive: rad, rad/s or m, m/s."""
+        if not d.coordinate:
+            return d.motion(t)[:2]
+        c = next(k for k, jc in enumerate(self.jc) if jc["drive"] is d)
+        r = self.jc[c]["rho"]
+        return q[self.nc + c] / r, v[self.nc + c] / r
+
+    def place(self, t, q, v, kin=None, jm=None):
         """Node positions and velocities (nn, 3) and all drum angles/speeds."""
         X, V, _, th = self.kinematics(t) if kin is None else kin
         X, V = X.copy(), V.copy()
+        if self.nJ:
+            jm = self.joint_motions(t, q, v) if jm is None else jm
+            for jc, (mo, *_) in zip(self.jc, jm):
+                R, dR, _, p, dp, _ = mo
+                X[jc["nodes"]] = jc["Xr"] @ R.T + p
+                V[jc["nodes"]] = jc["Xr"] @ dR.T + dp
         nf = len(self.free)
         if nf:
-            P = (self.E @ q[:self.nx]).reshape(nf, 3)
-            W = (self.E @ v[:self.nx]).reshape(nf, 3)
+            P = (self.E @ q[:self.nc]).reshape(nf, 3)
+            W = (self.E @ v[:self.nc]).reshape(nf, 3)
             if not self.sway:
                 H = self._H
                 P = P + (self._X0_free + X[self.root] - self._X0_root) @ H.T
@@ -416,14 +673,14 @@ class Mechanism:
         nf = len(self.free)
         where = {int(i): k for k, i in enumerate(self.free)}
         ns = len(self.span_a)
-        D = np.zeros((ns, 3, self.nx))
+        D = np.zeros((ns, 3, self.nc))
         for s_, (a, b) in enumerate(zip(self.span_a, self.span_b)):
             if b in where:
                 D[s_] += self.E[3 * where[b]:3 * where[b] + 3]
             if a in where:
                 D[s_] -= self.E[3 * where[a]:3 * where[a] + 3]
         self.D = D
-        self.DtD = np.einsum("sia,sib->sab", D, D).reshape(ns, -1)   # D_s^T D_s
+        self.DtD = np.einsum("sia,sib->sab", D, D).reshape(ns, self.nc ** 2)  # D_s^T D_s
         nr = len(self.ropes)
         self.A = np.zeros((nr, ns))
         self.A[self.span_rope, np.arange(ns)] = 1.0
@@ -432,8 +689,15 @@ class Mechanism:
         self.Rd = np.zeros((nr, self.nd))
         if len(self.rope_drum):
             np.add.at(self.Rd, (self.rope_drum, self.drum_of_end), self.end_radius)
-        self.Fg = self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, nf))
+        self.Fg = np.concatenate([self.E.T @ (np.repeat(self.free_mass, 3) *
+                                              np.tile(self.g, nf)), np.zeros(self.nJ)])
         self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
+        coords = self.model.coords
+        for jc in self.jc:
+            on = np.isin(self.span_b, jc["nodes"]), np.isin(self.span_a, jc["nodes"])
+            jc["span_ends"] = [(np.flatnonzero(m), coords[ends[m]], sg) for m, ends, sg in
+                               ((on[0], self.span_b, 1.0), (on[1], self.span_a, -1.0))
+                               if m.any()]
 
     def evaluate(self, t, q, v, taut, kin=None, damping=True, powers=True):
         """Forces and tangents at (t, q, v); with powers=False the power terms of the
@@ -444,15 +708,20 @@ class Mechanism:
         kept in one frame to avoid call overhead per step.
         """
         kin = self.kinematics(t) if kin is None else kin
-        X, V, theta, omega = self.place(t, q, v, kin)
-        n, nx = self.n, self.nx
+        jm = self.joint_motions(t, q, v) if self.nJ else None
+        X, V, theta, omega = self.place(t, q, v, kin, jm)
+        n, nx, nc = self.n, self.nx, self.nc
         L0 = self.unstretched(theta)
         l, e, L, S = kernels.rope_spans(X, self.span_a, self.span_b, self.falls,
                                         self.span_rope, self.EA, L0, self.extra, taut)
         nr = len(L)
         lam = L / L0
         fe = self.falls[:, None] * e                         # span rows f e
-        eD = np.einsum("si,sij->sj", e, self.D)              # (ns, nx) e_s . D_s
+        if self.nJ:
+            D, DJJ, XJ = self._joint_spans(jm)
+        else:
+            D = self.D
+        eD = np.einsum("si,sij->sj", e, D)                   # (ns, nx) e_s . D_s
         G = self.A @ (self.falls[:, None] * eD)              # (nr, nx) dL/dq_x
         Rd = self.Rd
         dV = V[self.span_b] - V[self.span_a]
@@ -465,7 +734,19 @@ class Mechanism:
         # tangent: EA/L G^T G + sum f S / l (I - e e^T) on the span ends
         # (kernels.projected_tangent, w = f S / l, with the constant D_s^T D_s made once)
         w = self.falls * S[self.span_rope] / l
-        K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) - (eD.T * w) @ eD
+        if self.nJ:
+            # the span vectors depend on the joint coordinates too: D_s^T D_s changes,
+            # and d^2L/du^2 gains f e . (d^2 Delta / du^2) (same coordinate only: a node
+            # moves with one joint coordinate at most)
+            K[:nx, :nx] = (G.T * cL) @ G + np.einsum("s,sia,sib->ab", w, D, D) \
+                - (eD.T * w) @ eD
+            jd = np.arange(nc, nx)
+            K[jd, jd] += np.einsum("s,si,sij->j", w * l, e, DJJ)
+            jt = self._joint_forces(t, q, v, jm, F, K, C)
+        else:
+            K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) \
+                - (eD.T * w) @ eD
+            jt = XJ = None
         # damping: b = psi c / (2 pi w), c = EA/L, w the rope's axial frequency now
         Sd = np.zeros(nr)
         b = np.zeros(nr)
@@ -510,16 +791,16 @@ class Mechanism:
             free3 = self.free3
             rsf = rs.reshape(len(N), -1)
             Gs = rsf[:, free3] @ self.E
-            F[:nx] -= Gs.T @ N
-            K[:nx, :nx] += self.E.T @ Ks[np.ix_(free3, free3)] @ self.E
+            F[:nc] -= Gs.T @ N
+            K[:nc, :nc] += self.E.T @ Ks[np.ix_(free3, free3)] @ self.E
             if damping and self.damped:
                 ddot = np.einsum("rij,ij->r", rs, V)
-                w2 = self.sp_k * np.einsum("rj,rj->r", Gs, Gs / self.M[:nx])
+                w2 = self.sp_k * np.einsum("rj,rj->r", Gs, Gs / self.M[:nc])
                 bs = np.where(w2 > 0, self.sp_psi * self.sp_k /
                               (2 * np.pi * np.sqrt(np.maximum(w2, 1e-300))), 0.0)
                 Nd = bs * ddot
-                F[:nx] -= Gs.T @ Nd
-                C[:nx, :nx] += (Gs.T * bs) @ Gs
+                F[:nc] -= Gs.T @ Nd
+                C[:nc, :nc] += (Gs.T * bs) @ Gs
                 N = N + Nd
                 spring = (rs, float(Nd @ ddot))
             else:
@@ -527,8 +808,8 @@ class Mechanism:
         else:
             spring = None
         ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
-                  None, None, None)
-        ev._ctx = (fe, lam, taut, spring)
+                  None, None, None, joint_torque=jt)
+        ev._ctx = (fe, lam, taut, spring, (jm, XJ, q, v))
         if powers:
             self.powers(ev)
         return ev
@@ -537,7 +818,7 @@ class Mechanism:
         """Fill the power terms of `ev` (W) and the guided loads' kinetic energy (J)."""
         if ev.P_drive is not None:
             return ev
-        fe, lam, taut, spring = ev._ctx
+        fe, lam, taut, spring, (jm, XJ, q, v) = ev._ctx
         S, Sd, V, omega, Rd = ev.S, ev.Sd, ev.V, ev.omega, self.Rd
         # energy carried onto (off) the drums with the wound rope: the drum's work
         # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
@@ -548,6 +829,12 @@ class Mechanism:
         else:
             P_wound = 0.0
         # power fed through kinematic nodes (moving sheaves, dead ends on bodies)
+        if self.nJ:
+            # the nodes a joint coordinate carries: only the prescribed part of their
+            # velocity is fed in from outside (the rest is the coordinate's own motion)
+            V = V.copy()
+            for c, (jc, (_, Rq, pq, _, _)) in enumerate(zip(self.jc, jm)):
+                V[jc["nodes"]] -= (jc["Xr"] @ Rq.T + pq) * v[self.nc + c]
         Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
             np.where(self.kin_a[:, None], V[self.span_a], 0.0)
         rVk = self.A @ np.einsum("si,si->s", fe, Vk)
@@ -566,6 +853,8 @@ class Mechanism:
             if d is not None and d.kind == "profile":
                 P += float(Rd[:, k] @ (S + Sd)) * omega[k]
         P += float(ev.drive_torque @ omega)
+        if self.nJ:
+            P += self._joint_power(ev, jm, q, v)
         # loads without sway are guided horizontally with their carrier: the guidance
         # does the work of their horizontal kinetic energy (the ropes hang vertically)
         T_guided = 0.0
@@ -583,6 +872,9 @@ class Mechanism:
         for cc, k in enumerate(self.qdrums):
             T += 0.5 * self.J[cc] * ev.omega[k] ** 2
         Vg = -float(self.free_mass @ (ev.X[self.free] @ self.g))
+        if self.nJ:
+            dT, dV = self._joint_energy(ev)
+            T, Vg = T + dT, Vg + dV
         with np.errstate(invalid="ignore", divide="ignore"):
             U = float(np.where(taut, kernels.hencky_energy(self.EA, ev.L, ev.L0), 0.0).sum())
         if len(self.sp_k):
@@ -594,7 +886,11 @@ class Mechanism:
     def _static(self, model):
         """Static tensions of the reference geometry (drums held, elastic stiffness
         only, as model-format.md "Static state"): S0 = c r u with K_e u = F_gravity; the
-        geometry must then be in equilibrium (checked). L0_ref = L_ref exp(-S0/EA)."""
+        geometry must then be in equilibrium (checked). L0_ref = L_ref exp(-S0/EA).
+
+        Length: one least-squares statics over the loads and free joints, with the check
+        and message of each way it can fail.
+        """
         file = model.scene_file or model.file
         self.damped = model.effects.damping != "none"
         nr, ns = len(self.ropes), len(self.sp_k)
@@ -602,30 +898,57 @@ class Mechanism:
         self.lam_ref = np.ones(nr)
         self.N_ref = np.zeros(ns)
         q0 = np.zeros(self.n)
-        q0[:self.nx] = self.qx_ref
+        q0[:self.nc] = self.qx_ref
         X = self.place(0.0, q0, np.zeros(self.n))[0]
         L, _, r, _ = kernels.rope_state(X, self.span_a, self.span_b, self.falls,
                                         self.span_rope, self.EA, np.ones(nr), self.extra,
                                         np.ones(nr, bool))
         free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
-        G = r.reshape(nr, -1)[:, free3] @ self.E
+        G = r.reshape(nr, 3 * self.nn)[:, free3] @ self.E
+        Fg = self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, len(self.free)))
+        # joint coordinates: free joints are unknowns of the static state, torque and
+        # motor joints are held (their drive's holding torque balances them at t = 0)
+        QgJ = np.zeros(self.nJ)
+        GJ = np.zeros((nr, self.nJ))
+        if self.nJ:
+            jm = self.joint_motions(0.0, q0, np.zeros(self.n))
+            D, _, _ = self._joint_spans(jm)
+            l = np.linalg.norm(X[self.span_b] - X[self.span_a], axis=1)
+            e = (X[self.span_b] - X[self.span_a]) / l[:, None]
+            GJ = self.A @ (self.falls[:, None] *
+                           np.einsum("si,sij->sj", e, D[:, :, self.nc:]))
+            for c, (jc, (_, Rq, pq, _, _)) in enumerate(zip(self.jc, jm)):
+                QgJ[c] = self.g @ (Rq @ jc["s"] + jc["m"] * pq)
+        free_j = [c for c, jc in enumerate(self.jc) if jc["drive"].kind == "free"]
+        G = np.hstack([G, GJ[:, free_j]])
+        Fg = np.concatenate([Fg, QgJ[free_j]])
+        nu = len(Fg)
         c = self.EA / L
         rows, stiff = [G], [c]
         if ns:
             _, _, rs, _ = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
                                                self.sp_dref, np.zeros(ns))
-            rows.append(rs.reshape(ns, -1)[:, free3] @ self.E)
+            Gs = rs.reshape(ns, -1)[:, free3] @ self.E
+            rows.append(np.hstack([Gs, np.zeros((ns, len(free_j)))]))
             stiff.append(self.sp_k)
-        Rall = np.vstack(rows) if rows else np.zeros((0, self.nx))
+        Rall = np.vstack(rows) if rows else np.zeros((0, nu))
         call = np.concatenate(stiff)
-        Fg = self.E.T @ (np.repeat(self.free_mass, 3) * np.tile(self.g, len(self.free)))
         Ke = (Rall.T * call) @ Rall
         u = np.linalg.lstsq(Ke, Fg, rcond=1e-12)[0]
         force = call * (Rall @ u)
         resid = Fg - Rall.T @ force
         weight = np.abs(Fg).max(initial=0.0)
+        worst = int(np.argmax(np.abs(resid))) if len(resid) else 0
+        if weight > 0 and np.abs(resid).max() > 1e-8 * weight and worst >= self.nc:
+            jc = self.jc[free_j[worst - self.nc]]
+            raise ModelError(f"the model's geometry is not a static equilibrium: the ropes "
+                             f"cannot hold {model.joints[jc['joint']].entry} (free in "
+                             f"drive '{jc['drive'].name}') there (unbalanced "
+                             f"{abs(resid[worst]) * jc['rho']:.4g} N m or N); reeve a rope "
+                             "that holds it, or drive it by a torque", file,
+                             jc["drive"].entry)
         if weight > 0 and np.abs(resid).max() > 1e-8 * weight:
-            k = int(np.argmax(np.abs(self.E[:, int(np.argmax(np.abs(resid)))]))) // 3
+            k = int(np.argmax(np.abs(self.E[:, worst]))) // 3
             node = self.model.node_names[self.free[k]]
             raise ModelError(f"the model's geometry is not a static equilibrium: the ropes "
                              f"and springs cannot hold the weight at node '{node}' there "
@@ -639,6 +962,9 @@ class Mechanism:
                              f"compression at rest ({S0[j]:.4g} N)", file,
                              f"ropes.{model.ropes[self.ropes[j]].name}")
         self.S0 = S0
+        # what holds each joint coordinate at rest (N m or N): -(gravity + ropes)
+        self.joint_hold = np.array([-(QgJ[c] - GJ[:, c] @ S0) * jc["rho"]
+                                    for c, jc in enumerate(self.jc)])
         self.L_ref = L
         self.lam_ref = np.exp(S0 / self.EA)
         self.L0_ref = L / self.lam_ref

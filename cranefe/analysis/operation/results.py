@@ -260,10 +260,10 @@ class Recorder:
                 spd.append(ev.omega[d.index])
                 tq.append(self._drum_torque(ev, d))
             else:
-                s, ds, _ = d.motion(ev.t)
+                s, ds = m.joint_state(d, ev.t, q, v)
                 pos.append(s)
                 spd.append(ds)
-                tq.append(np.nan)
+                tq.append(m.joint_drive_torque(d, ev.t, ds))
         # the span above each load; its angle from the vertical is taken in `result`
         self.samples.append((ev.t, X[self.mass_nodes], F, pos, spd, tq,
                              X[m.hang] - X[m.free]))
@@ -340,6 +340,7 @@ class Recorder:
                 labels.append(f"{nm}.height")
             else:
                 labels += [f"{nm}.{a}" for a in ("xz" if model.planar else "xyz")]
+        labels += [f"joint {jc['drive'].name}" for jc in m.jc]      # m, or arc m
         labels += [f"drum {model.drums[k].name}" for k in m.qdrums]
         return OperationResult(
             model.name, model.scene or "", model.effects.as_dict(), tuple(labels),

@@ -22,7 +22,8 @@ PROFILE_KEYS = {
     "table": ({"speed"}, set()),
 }
 ANGLE_KEYS = {"distance", "v_max", "a_max", "j_max", "speed"}   # _deg variants on hinges
-UNITS = {"drum": ("rad", "rad/s"), "hinge": ("rad", "rad/s"), "slider": ("m", "m/s")}
+UNITS = {"drum": ("rad", "rad/s"), "hinge": ("rad", "rad/s"), "slider": ("m", "m/s"),
+         "linear": ("m", "m/s")}
 
 
 @dataclass(frozen=True)
@@ -37,6 +38,14 @@ class Drive:
     torque: Profile = None    # torque: N m at the drum against time
     motor: Motor = None
     entry: str = ""
+    gear_ratio: float = 1.0   # joint motor: motor speed per joint speed (rad/rad, rad/m)
+    rotor_inertia: float = 0.0  # joint motor: kg m^2 at motor speed
+
+    @property
+    def coordinate(self):
+        """The joint's position is a coordinate of the equations of motion (a torque,
+        force, motor or free joint; drums: torque or motor)."""
+        return self.kind != "profile"
 
     @property
     def units(self):
@@ -97,7 +106,7 @@ def parse(model):
                    for name, spec in raw.items())
     seen = {}
     for d in drives:
-        key = (d.target == "drum", d.index)
+        key = (d.target if d.target in ("drum", "linear") else "joint", d.index)
         if key in seen:
             r.fail(d.entry, f"drives the same {d.target} as drive '{seen[key]}'; give one "
                    "drive per drum or joint")
@@ -115,20 +124,45 @@ def _joint_by_name(model, r, name, e):
 
 
 def _drive(model, r, name, spec, duration):
+    """One entry of `drives`. Drums: profile | torque | motor; hinges: profile | torque |
+    motor | free; sliders: profile | force | motor | free (docs/operations.md).
+
+    Length: one check per key of the three kinds of target, in the order of the docs.
+    """
     e = f"analysis.drives.{name}"
-    r.keys(spec, e, {"drum", "hinge", "slider", "profile", "torque", "motor", "ramp"})
-    targets = [k for k in ("drum", "hinge", "slider") if k in spec]
+    if not isinstance(spec, dict):
+        r.fail(e, "must be a mapping such as {drum: NAME, profile: {...}} or {hinge: "
+               "JOINT, torque: ...}")
+    r.keys(spec, e, {"drum", "hinge", "slider", "linear", "profile", "torque", "force",
+                     "motor", "ramp", "free", "gear_ratio", "rotor_inertia"})
+    targets = [k for k in ("drum", "hinge", "slider", "linear") if k in spec]
     if len(targets) != 1:
         r.fail(e, "say what the drive moves: exactly one of drum: NAME, hinge: JOINT "
-               "(slewing, luffing) or slider: JOINT (trolley travel)")
+               "(slewing, luffing), slider: JOINT (trolley travel) or linear: NAME (a "
+               "luffing cylinder or rack of the model's linear_drives)")
     target = targets[0]
-    kinds = [k for k in ("profile", "torque", "motor") if k in spec]
+    if target == "linear":
+        return _linear(model, r, name, spec, e)
+    load_key = "force" if target == "slider" else "torque"
+    wrong = "torque" if target == "slider" else "force"
+    if wrong in spec:
+        r.fail(f"{e}.{wrong}", f"a {target} is driven by a {load_key} ({'N' if target == 'slider' else 'N m'}); "
+               f"write {load_key}: ...")
+    if "free" in spec and (target == "drum" or spec["free"] is not True):
+        r.fail(f"{e}.free", "free: true (a joint turned or moved only by the forces on "
+               "it, e.g. a jib held by its luffing rope) belongs to a hinge or a slider")
+    kinds = [k for k in ("profile", load_key, "motor", "free") if k in spec]
     if len(kinds) != 1:
-        r.fail(e, "give exactly one of profile: {type: trapezoid|s_curve|table, ...}, "
-               "torque: ... or motor: {...} (docs/operations.md)")
+        r.fail(e, f"give exactly one of profile: {{type: trapezoid|s_curve|table, ...}}, "
+               f"{load_key}: ..., motor: {{...}}" + (" or free: true" if target != "drum"
+                                                    else "") + " (docs/operations.md)")
     kind = kinds[0]
-    if "ramp" in spec and kind != "torque":
-        r.fail(f"{e}.ramp", "ramp belongs to a torque; a profile has its own ramps")
+    if "ramp" in spec and kind != load_key:
+        r.fail(f"{e}.ramp", f"ramp belongs to a {load_key}; a profile has its own ramps")
+    for k in ("gear_ratio", "rotor_inertia"):
+        if k in spec and (kind != "motor" or target == "drum"):
+            r.fail(f"{e}.{k}", f"{k} belongs to the motor of a joint drive (a drum's "
+                   "gear and rotor are in the model's drums entry)")
     if target == "drum":
         names = {d.name: i for i, d in enumerate(model.drums)}
         dname = spec["drum"]
@@ -144,16 +178,20 @@ def _drive(model, r, name, spec, duration):
             r.fail(f"{e}.{target}", f"joint '{spec[target]}' ({joint.entry}) is a "
                    f"{joint.type} joint, not a {target}: a {target} drive {what}; name a "
                    f"{target} joint or use {joint.type if joint.type in ('hinge', 'slider') else 'another'}: ...")
-        if kind != "profile":
-            r.fail(f"{e}.{kind}", f"a {target} is driven by a motion profile in this "
-                   "version (torque and motor drives of joints: not yet)")
-    if kind == "torque":
+    if kind == load_key:
         ramp = r.number(spec["ramp"], f"{e}.ramp", nonneg=True) if "ramp" in spec else None
         return Drive(name, target, index, "torque",
-                     torque=_profile(r, spec["torque"], f"{e}.torque", 1, ramp), entry=e)
+                     torque=_profile(r, spec[load_key], f"{e}.{load_key}", 1, ramp),
+                     entry=e)
+    if kind == "free":
+        return Drive(name, target, index, "free", entry=e)
     if kind == "motor":
+        gear = r.number(spec.get("gear_ratio", 1.0), f"{e}.gear_ratio", positive=True)
+        rotor = r.number(spec.get("rotor_inertia", 0.0), f"{e}.rotor_inertia",
+                         nonneg=True)
         return Drive(name, target, index, "motor",
-                     motor=_motor(r, spec["motor"], f"{e}.motor"), entry=e)
+                     motor=_motor(r, spec["motor"], f"{e}.motor"), entry=e,
+                     gear_ratio=gear, rotor_inertia=rotor)
     raw = spec["profile"]
     if isinstance(raw, list):
         if not raw:
@@ -174,6 +212,24 @@ def _drive(model, r, name, spec, duration):
     drive = Drive(name, target, index, "profile", motion=motion, entry=e)
     _check_travel(model, r, drive, duration)
     return drive
+
+
+def _linear(model, r, name, spec, e):
+    """A linear drive (luffing cylinder, rack) whose length follows a profile (m)."""
+    names = [d.name for d in model.linear_drives]
+    if spec["linear"] not in names:
+        r.fail(f"{e}.linear", f"unknown linear drive '{spec['linear']}'; linear_drives of "
+               f"the model: {', '.join(names) or 'none'}")
+    extra = set(spec) - {"linear", "profile"}
+    if extra or "profile" not in spec:
+        r.fail(f"{e}.{sorted(extra)[0]}" if extra else e, "a linear drive follows a "
+               "profile of its length change (m): give profile: {...} only")
+    raw = spec["profile"]
+    motion = profiles.combine([_motion(r, p, f"{e}.profile[{k}]", False)
+                               for k, p in enumerate(raw)]) if isinstance(raw, list) \
+        else _motion(r, raw, f"{e}.profile", False)
+    return Drive(name, "linear", names.index(spec["linear"]), "profile", motion=motion,
+                 entry=e)
 
 
 def _motion(r, p, e, angles):
