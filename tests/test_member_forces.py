@@ -91,6 +91,29 @@ def test_column_under_axial_load_and_a_truss(tmp_path, capsys):
     assert t["type"] == "truss"
 
 
+def test_a_tripod_of_trusses_shares_its_load(tmp_path, capsys):
+    # three bars from the ground at 120 degrees down to a hanging mass m: each carries
+    # N = m g / (3 cos theta), theta the bars' angle from the vertical (here 45 degrees)
+    m, g = 3000.0, 9.81
+    r3 = math.sqrt(3)
+    text = f"""
+    cranefe: 1
+    nodes: {{S1: [2, 0, 0], S2: [-1, {r3}, 0], S3: [-1, {-r3}, 0], W: [0, 0, -2]}}
+    ground: [S1, S2, S3]
+    members:
+      bars: {{type: truss, pairs: [[S1, W], [S2, W], [S3, W]], E: {E}, rho: 0,
+             section: {{profile: L 60x6}}}}
+    masses: {{W: {m}}}
+    effects: {{structure: flexible}}
+    """
+    doc = _json(capsys, ["check", _write(tmp_path, text), "--json"])
+    pieces = doc["member_forces"]
+    assert [p["from"] for p in pieces] == ["S1", "S2", "S3"]
+    N = m * g / (3 * math.cos(math.pi / 4))
+    for p in pieces:
+        assert [p["start"]["N"], p["end"]["N"]] == pytest.approx([N, N], rel=1e-9)
+
+
 def _simply_supported(n, L=10.0):
     """A simply supported beam A-C-B (C at midspan), n elements per half, planar."""
     return f"""

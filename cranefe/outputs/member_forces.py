@@ -58,7 +58,8 @@ def element_end_forces(model, layout, mm, U, weight=True):
         EA = np.array([m.E * m.A for m in model.members])[mm.member[t]]
         du = U[:, 6 * mm.node[t, 1, None] + np.arange(3)] - \
             U[:, 6 * mm.node[t, 0, None] + np.arange(3)]
-        out[:, t, :, 0] = (EA / l * np.einsum("kei,ei->ke", du, e))[:, :, None]
+        axial = out[..., 0]                      # a view: (k, ne, 2)
+        axial[:, t, :] = (EA / l * np.einsum("kei,ei->ke", du, e))[:, :, None]
     return out
 
 
