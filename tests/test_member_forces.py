@@ -78,8 +78,11 @@ def test_column_under_axial_load_and_a_truss(tmp_path, capsys):
     from cranefe.model.sections import profile_shape, section_properties
     Ac = section_properties(*profile_shape("HEB 200"), 0.3)[0]
     At = section_properties(*profile_shape("L 100x10"), 0.3)[0]
-    doc = _json(capsys, ["check", _write(tmp_path, text), "--json"])
+    path = _write(tmp_path, text)
+    (beam_only,) = _json(capsys, ["check", path, "--json"])["member_forces"]
+    doc = _json(capsys, ["check", path, "--json", "--member-forces"])
     c, t = doc["member_forces"]
+    assert beam_only == c
     for end in ("start", "end"):
         assert c[end]["N"] == pytest.approx(-m * g, rel=1e-9)
         assert [c[end][k] for k in ("Vy", "Vz", "T", "My", "Mz")] == pytest.approx(
@@ -106,7 +109,7 @@ def test_a_tripod_of_trusses_shares_its_load(tmp_path, capsys):
     masses: {{W: {m}}}
     effects: {{structure: flexible}}
     """
-    doc = _json(capsys, ["check", _write(tmp_path, text), "--json"])
+    doc = _json(capsys, ["check", _write(tmp_path, text), "--json", "--member-forces"])
     pieces = doc["member_forces"]
     assert [p["from"] for p in pieces] == ["S1", "S2", "S3"]
     N = m * g / (3 * math.cos(math.pi / 4))

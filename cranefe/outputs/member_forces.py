@@ -155,13 +155,17 @@ def static_member_forces(model, layout, mm, u):
     return MemberForces("static", F, extreme_stresses(model, mm, F), pieces(model, mm))
 
 
-def member_end_forces(model, layout, mm, u):
-    """JSON-ready section forces at the ends of each node-to-node piece of each member in
-    the static state u: [{"member", "type", "from", "to", "start": {N..Mz, sigma_max,
-    sigma_min}, "end": {...}}, ...] ([] without members)."""
-    if mm is None or not len(mm.member):
+def member_end_forces(model, layout, mm, u, trusses=False):
+    """JSON-ready section forces at the ends of each node-to-node piece of each beam
+    member (and with `trusses` each truss) in the static state u: [{"member", "type",
+    "from", "to", "start": {N..Mz, sigma_max, sigma_min}, "end": {...}}, ...] ([]
+    without them)."""
+    if mm is None or not len(mm.member) or not (trusses or mm.beam.any()):
         return []
-    return static_member_forces(model, layout, mm, u).to_dict()
+    mf = static_member_forces(model, layout, mm, u)
+    if not trusses:
+        mf.pieces = [p for p in mf.pieces if p[1] == "beam"]
+    return mf.to_dict()
 
 
 def modal_member_forces(model, dofs, shapes, node_shapes=None, amplitude=None):
