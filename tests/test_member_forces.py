@@ -224,8 +224,10 @@ def test_vtu_carries_the_modes_member_forces_as_cell_data(tmp_path, capsys):
     meshio = pytest.importorskip("meshio")
     path = _write(tmp_path, _simply_supported(4))
     out = tmp_path / "m.vtu"
+    xdmf = tmp_path / "m.xdmf"
     doc = _json(capsys, ["modes", path, "--json", "--count", "2", "--member-forces",
-                         "--member-forces-scale", "0.01", "--vtu", str(out)])
+                         "--member-forces-scale", "0.01", "--vtu", str(out), "--xdmf",
+                         str(xdmf)])
     m = meshio.read(out)
     My = m.cell_data["mode_1_My"][0]
     kind = m.cell_data["kind"][0]
@@ -234,6 +236,11 @@ def test_vtu_carries_the_modes_member_forces_as_cell_data(tmp_path, capsys):
     mid = doc["member_forces"]["modes"][0]["pieces"][0]["end"]["My"]
     assert np.nanmax(np.abs(members)) == pytest.approx(abs(mid), rel=1e-12)
     assert "mode_2_sigma_max" in m.cell_data
+    # the XDMF series of the modes: step k carries mode k's arrays
+    with meshio.xdmf.TimeSeriesReader(str(xdmf)) as r:
+        r.read_points_cells()
+        _, _, cells = r.read_data(0)
+    assert np.nanmax(np.abs(cells["My"][0])) == pytest.approx(abs(mid), rel=1e-12)
 
 
 def test_xdmf_series_of_a_run_carries_member_forces(tmp_path, capsys):

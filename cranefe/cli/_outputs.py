@@ -112,7 +112,8 @@ def check_outputs(args, model=None):
 
 def write_outputs(args, model, system, results, modal, member_forces=None):
     """Write what the options ask for; report each path on stderr. `member_forces`
-    (`cranefe.outputs.member_forces.MemberForces` of the modes) adds cell data to --vtu."""
+    (`cranefe.outputs.member_forces.MemberForces` of the modes) adds cell data to --vtu
+    and --xdmf."""
     written = []
     check_outputs(args, model)
     if args.archive is not None:
@@ -126,7 +127,8 @@ def write_outputs(args, model, system, results, modal, member_forces=None):
                                  member_forces=member_forces))
     if args.xdmf is not None:
         from ..outputs.paraview import write_xdmf_modes
-        written.append(write_xdmf_modes(args.xdmf, model, system.dofs, modal))
+        written.append(write_xdmf_modes(args.xdmf, model, system.dofs, modal,
+                                        member_forces=member_forces))
     if args.images is not None:
         from ..outputs.render import render_modes
         written += render_modes(args.images, model, system.dofs, modal,

@@ -114,11 +114,12 @@ def write_xdmf_series(path, model, dofs, times, fields, member_forces=None):
     return path
 
 
-def write_xdmf_modes(path, model, dofs, result):
-    """Modes as an XDMF series: step k (time = k) is mode k, field 'displacement'."""
+def write_xdmf_modes(path, model, dofs, result, member_forces=None):
+    """Modes as an XDMF series: step k (time = k) is mode k, field 'displacement'; with
+    `member_forces` (of the modes) the member cell arrays N .. sigma_min of each mode."""
     disp = point_displacements(dofs, result.shapes)
     return write_xdmf_series(path, model, dofs, np.arange(1, len(disp) + 1),
-                             {"displacement": disp})
+                             {"displacement": disp}, member_forces=member_forces)
 
 
 __all__ = ["write_vtu", "write_xdmf_series", "write_xdmf_modes", "KINDS"]
