@@ -14,10 +14,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from .assembly import Blocks, elastic_stiffness, mass_and_gravity, pattern, sum_blocks
-from .assembly.beams import axial_variation, beam_dofs, end_releases, local_released
+from .assembly.beams import axial_variation, beam_dofs, beam_geometric_local
 from .assembly.springs import SpringRows
 from .coordinates import build_dofs
-from .elements import (beam_axes, beam_geometric, load_stiffness, span_geometry,
+from .elements import (beam_axes, load_stiffness, span_geometry,
                        string_stiffness, to_global)
 from .statics import solve_static
 
@@ -61,8 +61,7 @@ def geometric_stiffness(dofs, static):
         bi = np.flatnonzero(mm.beam)
         e, l = span_geometry(dofs.coords, mm.node[bi, 0], mm.node[bi, 1])
         dN = axial_variation(static.model, layout, mm, bi)
-        kg = local_released(beam_geometric(static.beam_force, l, dN),
-                            end_releases(static.model, layout, mm, bi))
+        kg = beam_geometric_local(static.model, layout, mm, bi, static.beam_force, l, dN)
         out.append(Blocks(beam_dofs(layout, mm, bi),
                           to_global(kg, beam_axes(e, mm.orientation[bi]))))
     first_body = {}

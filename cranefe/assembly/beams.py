@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from ..elements import beam_axes, beam_stiffness, release_transforms, to_global, transform
+from ..elements import (beam_axes, beam_geometric, beam_stiffness, release_transforms,
+                        to_global, transform)
 from .coo import Blocks
 from .materials import element_sections, shear_parameters
 from .springs import member_geometry
@@ -83,3 +84,12 @@ def beam_local_matrices(model, layout, mm, b):
                            rotary=sec.timoshenko[b]))
     T = end_releases(model, layout, mm, b, sec, l)
     return local_released(_local_stiffness(sec, b, l), T), local_released(m, T), axes
+
+
+def beam_geometric_local(model, layout, mm, b, N, l, dN=None):
+    """Local geometric stiffness (with the end releases) of beam elements b under mean
+    axial forces N (len(b),) and their linear change dN: with the shear parameters of
+    Timoshenko members (`beam_geometric`)."""
+    sec = element_sections(model, mm)
+    return local_released(beam_geometric(N, l, dN, *shear_parameters(sec, b, l)),
+                          end_releases(model, layout, mm, b, sec, l))

@@ -32,6 +32,26 @@ def seconds_type(text):
     return v
 
 
+def add_member_force_arguments(p, modes=False):
+    """--member-forces (and for modes --member-forces-scale): section forces and stresses
+    at the members' ends in --json (docs/structure.md, "Member forces")."""
+    p.add_argument("--member-forces", action="store_true", help="add the members' end "
+                   "forces and extreme-fibre stresses to --json" + (
+                       " (per mode)" if modes else " (envelope over the output times)"))
+    if modes:
+        def amplitude(text):
+            try:
+                v = float(text)
+            except ValueError:
+                v = float("nan")
+            if not 0 < v < 1e6:
+                raise argparse.ArgumentTypeError(f"{text!r}: give an amplitude in m, > 0")
+            return v
+        p.add_argument("--member-forces-scale", type=amplitude, default=None, metavar="M",
+                       help="scale each mode so its largest node translation is M metres "
+                       "(default: mass-normalised modes)")
+
+
 def add_output_arguments(p):
     g = p.add_argument_group("outputs")
     g.add_argument("--archive", metavar="OUT.h5", help="write an HDF5 result archive")
@@ -90,8 +110,10 @@ def check_outputs(args, model=None):
     return plan
 
 
-def write_outputs(args, model, system, results, modal):
-    """Write what the options ask for; report each path on stderr."""
+def write_outputs(args, model, system, results, modal, member_forces=None):
+    """Write what the options ask for; report each path on stderr. `member_forces`
+    (`cranefe.outputs.member_forces.MemberForces` of the modes) adds cell data to --vtu
+    and --xdmf."""
     written = []
     check_outputs(args, model)
     if args.archive is not None:
@@ -101,10 +123,12 @@ def write_outputs(args, model, system, results, modal):
                                      timings=modal.timings))
     if args.vtu is not None:
         from ..outputs.paraview import write_vtu
-        written.append(write_vtu(args.vtu, model, system.dofs, modal))
+        written.append(write_vtu(args.vtu, model, system.dofs, modal,
+                                 member_forces=member_forces))
     if args.xdmf is not None:
         from ..outputs.paraview import write_xdmf_modes
-        written.append(write_xdmf_modes(args.xdmf, model, system.dofs, modal))
+        written.append(write_xdmf_modes(args.xdmf, model, system.dofs, modal,
+                                        member_forces=member_forces))
     if args.images is not None:
         from ..outputs.render import render_modes
         written += render_modes(args.images, model, system.dofs, modal,

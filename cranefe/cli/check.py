@@ -9,6 +9,8 @@ HELP = "check a model: DOFs, ropes, static tensions, quasi-cyclic coordinates"
 def add_arguments(p):
     p.add_argument("file", help="model or scene file (YAML)")
     p.add_argument("--json", action="store_true", help="print one JSON document")
+    p.add_argument("--member-forces", action="store_true", help="list the trusses' axial "
+                   "forces too (beams' end forces are always listed)")
 
 
 def run(args):
@@ -66,7 +68,8 @@ def run(args):
            "dofs": system.K.shape[0], "coordinates": list(system.dofs.labels),
            "quasi_cyclic": qc, "massless_condensed": massless,
            "constraints": [c.name for c in system.dofs.constraints],
-           "elements": elements, "warnings": warnings, **_member_forces(model, system, static)}
+           "elements": elements, "warnings": warnings,
+           **_member_forces(model, system, static, args)}
     if args.json:
         print(dumps(doc))
         return 0
@@ -126,10 +129,12 @@ def _rotates(dofs, i):
     return dofs.T[dofs.layout.rot(i)].nnz > 0
 
 
-def _member_forces(model, system, static):
-    """{"member_forces": [...]}: section forces at the ends of beam members in the
-    static state, when the structure is flexible and has beams ({} otherwise)."""
+def _member_forces(model, system, static, args=None):
+    """{"member_forces": [...]}: section forces at the ends of beam members (with
+    --member-forces also of trusses) in the static state, when the structure is flexible
+    and has them ({} otherwise)."""
     from ..outputs.member_forces import member_end_forces
     mm = system.dofs.members
-    forces = member_end_forces(model, system.dofs.layout, mm, static.u) if mm else []
+    forces = member_end_forces(model, system.dofs.layout, mm, static.u,
+                               trusses=getattr(args, "member_forces", False)) if mm else []
     return {"member_forces": forces} if forces else {}

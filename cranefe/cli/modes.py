@@ -1,6 +1,7 @@
 """Natural frequencies and mode shapes of a model or scene."""
 
 from ._outputs import add_output_arguments, check_outputs, write_outputs
+from ._outputs import add_member_force_arguments
 
 HELP = "natural frequencies and modes"
 
@@ -11,6 +12,7 @@ def add_arguments(p):
                    "for small models, 10 for large ones, or the scene's count)")
     p.add_argument("--json", action="store_true", help="print one JSON document")
     p.add_argument("--solver", choices=("auto", "dense", "sparse"), default="auto")
+    add_member_force_arguments(p, modes=True)
     add_output_arguments(p)
 
 
@@ -40,8 +42,17 @@ def run(args):
         modal, shown = partner_modes(model, system, len(result.omega))
         results["damping"] = damping(model, model.effects.damping, shown, system=system,
                                      modal=modal)
+    member_forces = None        # not in `results`: the archive has no place for it yet
+    if getattr(args, "member_forces", False):
+        from ..outputs.member_forces import modal_member_forces
+        mm = system.dofs.members
+        if mm is not None and len(mm.member):
+            member_forces = modal_member_forces(model, system.dofs, result.shapes,
+                                                result.node_shapes, args.member_forces_scale)
     if args.json:
         doc = modes_document(result, comparison)
+        if member_forces is not None:
+            doc["member_forces"] = member_forces.to_dict()
         if "damping" in results:
             from ..outputs.report import damping_document
             doc["damping"] = damping_document(results["damping"])["modes"]
@@ -53,5 +64,5 @@ def run(args):
         if "damping" in results:
             from ..outputs.report import damping_table
             print(damping_table(results["damping"]))
-    write_outputs(args, model, system, results, result)
+    write_outputs(args, model, system, results, result, member_forces=member_forces)
     return 0

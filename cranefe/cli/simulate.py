@@ -23,6 +23,8 @@ def add_arguments(p):
     p.add_argument("--xdmf", metavar="OUT.xdmf", help="displacements as an XDMF time "
                    "series for ParaView")
     p.add_argument("--plots", metavar="DIR", help="PNG plot of the histories (DIR/transient.png)")
+    from ._outputs import add_member_force_arguments
+    add_member_force_arguments(p)
 
 
 class _Progress:
@@ -85,6 +87,19 @@ def run_operation(args, model):
     return 0
 
 
+def _member_force_envelope(model, result):
+    """Envelope of the members' end forces over the run's output times (None without
+    flexible members): the static state plus the run's displacements."""
+    from ..statics import solve_static
+    from ..system import assemble
+    from ..outputs.member_forces import transient_envelope
+    system = assemble(model)
+    mm = system.dofs.members
+    if mm is None or not len(mm.member):
+        return None
+    return transient_envelope(model, system.dofs, solve_static(model).u, result.q)
+
+
 def run(args):
     from ..model import load
     from ..outputs.report import dumps
@@ -94,13 +109,22 @@ def run(args):
     model = load(args.file)
     check_outputs(args, model)
     if model.analysis.get("type") == "operation":
+        if getattr(args, "member_forces", False):
+            from ..errors import ModelError
+            raise ModelError("--member-forces is not computed for operation scenes yet; "
+                             "use it with a transient scene", args.file)
         return run_operation(args, model)
     progress = _Progress()
     try:
         result = simulate(model, progress=progress)
     finally:
         progress.close()
-    print(dumps(document(result)) if args.json else table(result))
+    doc = document(result)
+    if getattr(args, "member_forces", False):
+        envelope = _member_force_envelope(model, result)
+        if envelope is not None:
+            doc["member_forces"] = envelope.to_dict()
+    print(dumps(doc) if args.json else table(result))
     written = []
     if args.csv is not None:
         from ..analysis.transient.output import write_csv
@@ -117,8 +141,16 @@ def run(args):
             from ..outputs.mesh import point_displacements
             from ..outputs.paraview import write_xdmf_series
             disp = point_displacements(system.dofs, result.q.T)
+            per_time = None
+            if getattr(args, "member_forces", False) and system.dofs.members is not None \
+                    and len(system.dofs.members.member):
+                from ..statics import solve_static
+                from ..outputs.member_forces import run_member_forces
+                per_time = run_member_forces(model, system.dofs, solve_static(model).u,
+                                             result.q)
             written.append(write_xdmf_series(args.xdmf, model, system.dofs, result.times,
-                                             {"displacement": disp}))
+                                             {"displacement": disp},
+                                             member_forces=per_time))
     if args.plots is not None:
         from ..analysis.transient.output import plot
         written += plot(args.plots, result)

@@ -131,26 +131,48 @@ def beam_mass(rho, A, Iy, Iz, l, lumped=False, phi_y=None, phi_z=None, rotary=No
     return out
 
 
-def beam_geometric(N, l, dN=None):
+def _geometric4(N, l, dN, phi):
+    """4x4 geometric stiffness (v1, r1, v2, r2) of beams, batched: int N(x) v' v'^T dx
+    with the element's own (static, exact) shape functions v(x) of shear parameter phi,
+    N(x) = N + dN (x/l - 1/2) (dN None: constant). Derived symbolically (sympy) from the
+    Timoshenko beam's equilibrium EI psi'' + kGA (v' - psi) = 0, v'' = psi' with the
+    nodal rotations psi; N works on the total slope v' (so P-delta converges to Engesser's
+    shear-buckling load). With d = (1 + phi)^2:
+    N/(l d) [[6/5 + 2 phi + phi^2, l/10, -(..), l/10],
+             [l/10, l^2 (2/15 + phi/6 + phi^2/12), -l/10, -l^2 (1/30 + phi/6 + phi^2/12)],
+             ...] plus dN/d [[0, c, 0, -c], [c, -l (1+phi)/30, -c, 0], [0, -c, 0, c],
+    [-c, 0, c, l (1+phi)/30]], c = 1/20 + 2 phi/15 + phi^2/12; phi = 0: the cubic
+    N/(30 l) [[36, 3l, -36, 3l], ...] and dN/l [[0, l/20, 0, -l/20], ...]."""
+    d = (1 + phi) ** 2
+    s = N / (l * d)
+    a = s * (6 / 5 + 2 * phi + phi**2)
+    e = s * l**2 * (2 / 15 + phi / 6 + phi**2 / 12)
+    g = -s * l**2 * (1 / 30 + phi / 6 + phi**2 / 12)
+    bl = s * l / 10
+    k = _pattern4(a, bl, -a, bl, e, -bl, g, a, -bl, e)
+    if dN is not None:
+        c = dN / d * (1 / 20 + 2 * phi / 15 + phi**2 / 12)
+        r = dN * l / (30 * (1 + phi))
+        z = np.zeros_like(c)
+        k = k + _pattern4(z, c, z, -c, -r, -c, z, z, c, r)
+    return k
+
+
+def beam_geometric(N, l, dN=None, phi_y=None, phi_z=None):
     """Local geometric stiffness of beams under axial force N (tension +), (ne, 12, 12):
-    int N(x) H'(x) H'(x)^T dx with the cubic (Hermite) shape functions H in each bending
-    plane. N: the mean axial force, giving N/(30 l) [[36, 3l, -36, 3l], ...]; dN (or
-    None): its change from the first end to the second when it varies linearly along the
-    element (an axial distributed load, e.g. the element's own weight), adding
-    dN/l [[0, l/20, 0, -l/20], [l/20, -l^2/30, -l/20, 0], [0, -l/20, 0, l/20],
-    [-l/20, 0, l/20, l^2/30]] (the integral with N(x) = N + dN (x/l - 1/2))."""
+    int N(x) v'(x) v'(x)^T dx in each bending plane (`_geometric4`) with the element's
+    shape functions: cubic (Hermite) for Euler-Bernoulli beams, those of the Timoshenko
+    element for shear parameters phi_y (x-y plane), phi_z (x-z plane). N: the mean axial
+    force, giving N/(30 l) [[36, 3l, -36, 3l], ...] for phi = 0; dN (or None): its change
+    from the first end to the second when it varies linearly along the element (an axial
+    distributed load, e.g. the element's own weight), adding dN/l [[0, l/20, 0, -l/20],
+    [l/20, -l^2/30, -l/20, 0], [0, -l/20, 0, l/20], [-l/20, 0, l/20, l^2/30]] for phi = 0
+    (the integral with N(x) = N + dN (x/l - 1/2))."""
     ne = len(l)
     out = np.zeros((ne, 12, 12))
-    c = N / (30 * l)
-    b4 = _pattern4(36 * c, 3 * l * c, -36 * c, 3 * l * c, 4 * l**2 * c, -3 * l * c,
-                   -l**2 * c, 36 * c, -3 * l * c, 4 * l**2 * c)
-    if dN is not None:
-        d = dN / l
-        z = np.zeros(ne)
-        b4 = b4 + _pattern4(z, l / 20 * d, z, -l / 20 * d, -l**2 / 30 * d, -l / 20 * d, z,
-                            z, l / 20 * d, l**2 / 30 * d)
-    _bending([1, 5, 7, 11], b4, out, False)
-    _bending([2, 4, 8, 10], b4, out, True)
+    zero = np.zeros(ne)
+    for cols, flip, phi in (([1, 5, 7, 11], False, phi_y), ([2, 4, 8, 10], True, phi_z)):
+        _bending(cols, _geometric4(N, l, dN, zero if phi is None else phi), out, flip)
     return out
 
 

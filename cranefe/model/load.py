@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import ModelError
 from . import ropes_data, units
 from ..outpaths import named_path, note_read
-from .sections import SHAPES, section_properties
+from .sections import OPTIONAL, SHAPES, profile_shape, section_moduli, section_properties
 from .model import (EFFECT_CHOICES, GROUND, Body, Drum, Effects, Joint, LinearDrive,
                     Member, Model, PointMasses, Rope, Spring, Support)
 from .yamlio import read_yaml
@@ -870,7 +870,7 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
     m = _with_section(m, e, r)
     r.keys(m, e, {"type", "nodes", "pairs", "mesh", "E", "G", "A", "Iy", "Iz", "J", "rho",
                   "orientation", "elements", "mass", "psi", "Asy", "Asz",
-                  "shear_coefficient", "releases"}, required=("type", "E", "A"))
+                  "shear_coefficient", "releases", "Wy", "Wz"}, required=("type", "E", "A"))
     given = [k for k in ("nodes", "pairs", "mesh") if k in m]
     if len(given) != 1:
         r.fail(e, "give exactly one of 'nodes' (a chain), 'pairs' (a list of [A, B]) or "
@@ -915,7 +915,7 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
         for k in need:
             if k not in m:
                 r.fail(e, f"a beam needs '{k}'")
-        for k in ("G", "Iy", "Iz", "J"):
+        for k in ("G", "Iy", "Iz", "J", "Wy", "Wz"):
             if k in m:
                 kw[k] = r.number(m[k], f"{e}.{k}", positive=True)
         if "orientation" in m:
@@ -926,7 +926,7 @@ def _member(name, m, r, node, coords, scale, planar, mesh_pairs=None, names=None
         kw.update(_releases(m, e, r, node, chain, pairs, planar))
     else:
         for k in ("G", "Iy", "Iz", "J", "orientation", "Asy", "Asz", "shear_coefficient",
-                  "releases"):
+                  "releases", "Wy", "Wz"):
             if k in m:
                 r.fail(f"{e}.{k}", "a truss has only axial stiffness; remove it")
     elements = r.integer(m.get("elements", 1), f"{e}.elements", minimum=1)
@@ -1041,28 +1041,51 @@ def _releases(m, e, r, node, chain, pairs, planar):
     return {"releases": tuple(out.items())}
 
 
-SECTION_FILLS = ("A", "Iy", "Iz", "J")
+SECTION_FILLS = ("A", "Iy", "Iz", "J", "Wy", "Wz")
 
 
 def _with_section(m, e, r):
-    """The member entry with `section: {shape, dimensions..., timoshenko}` replaced by
-    the A, Iy, Iz, J (and with timoshenko: true the shear areas) of that shape
-    (`cranefe.model.sections`); unchanged without a section."""
+    """The member entry with `section: {shape, dimensions..., timoshenko}` or `section:
+    {profile: NAME, timoshenko}` replaced by the A, Iy, Iz, J (and with timoshenko: true
+    the shear areas) of that shape (`cranefe.model.sections`), plus the elastic moduli
+    Wy, Wz for stresses; unchanged without a section."""
     if not isinstance(m, dict) or "section" not in m:
         return m
     sec, es = r.mapping(m["section"], f"{e}.section"), f"{e}.section"
-    shape = sec.get("shape")
-    if shape not in SHAPES:
-        r.fail(f"{es}.shape", f"{shape!r} is not one of {', '.join(sorted(SHAPES))}")
-    dims = SHAPES[shape][0]
-    r.keys(sec, es, {"shape", "timoshenko", *dims}, required=("shape", *dims))
-    vals = {d: r.number(sec[d], f"{es}.{d}", positive=True) for d in dims}
+    if "profile" in sec:
+        r.keys(sec, es, {"profile", "timoshenko"}, required=("profile",))
+        found = profile_shape(sec["profile"])
+        if found is None:
+            r.fail(f"{es}.profile", f"unknown profile {sec['profile']!r}; use a name of "
+                   "cranefe/model/profiles.csv (IPE, HEA, HEB, HEM, equal angles 'L 100x10'"
+                   ") or a hollow section by its size ('CHS 168.3x10', 'SHS 100x5', "
+                   "'RHS 200x100x8'), or give the shape's dimensions")
+        shape, vals = found
+        dims = ()
+    else:
+        shape = sec.get("shape")
+        if shape not in SHAPES:
+            r.fail(f"{es}.shape", f"{shape!r} is not one of {', '.join(sorted(SHAPES))}")
+        dims = SHAPES[shape][0]
+        opt = tuple(OPTIONAL[shape])
+        r.keys(sec, es, {"shape", "timoshenko", *dims, *opt}, required=("shape", *dims))
+        vals = {d: r.number(sec[d], f"{es}.{d}", positive=True) for d in dims}
+        vals.update({d: r.number(sec[d], f"{es}.{d}", nonneg=True) for d in opt if d in sec})
     thin = {"t": (2, ("D", "b", "h")), "tw": (1, ("b",)), "tf": (2, ("h",))}
     for d, (n, outer) in thin.items():
         for o in outer:
-            if d in vals and o in vals and n * vals[d] >= vals[o]:
+            if d in dims and o in vals and n * vals[d] >= vals[o]:
                 r.fail(f"{es}.{d}", f"{'twice ' if n == 2 else ''}the thickness {d} must "
                        f"be less than {o}")
+    radii = {"r": lambda v: min((v["b"] - v["tw"]) / 2, v["h"] / 2 - v["tf"]),
+             "r1": lambda v: min(v["h"], v["b"]) - v["t"], "r2": lambda v: v["t"],
+             "ro": lambda v: min(v["b"], v["h"]) / 2, "ri": lambda v: min(v["b"], v["h"]) / 2 - v["t"]}
+    for d, limit in radii.items():
+        if d in vals and shape != "tube" and vals[d] > limit(vals):
+            r.fail(f"{es}.{d}", f"the radius {d} = {vals[d]:g} m does not fit the section "
+                   f"(at most {limit(vals):g} m)")
+    if shape == "angle" and vals["t"] >= min(vals["h"], vals["b"]):
+        r.fail(f"{es}.t", "the thickness t must be less than both legs h and b")
     both = [k for k in SECTION_FILLS if k in m]
     if both:
         r.fail(e, f"give the section or {', '.join(both)}, not both")
@@ -1070,10 +1093,11 @@ def _with_section(m, e, r):
     nu = m["E"] / (2 * G) - 1 if isinstance(G, (int, float)) and G and \
         isinstance(m.get("E"), (int, float)) else 0.3
     A, Iy, Iz, J, Asy, Asz = section_properties(shape, vals, nu)
+    Wy, Wz = section_moduli(shape, vals)
     out = {k: v for k, v in m.items() if k != "section"}
-    out.update(A=A, Iy=Iy, Iz=Iz, J=J)
+    out.update(A=A, Iy=Iy, Iz=Iz, J=J, Wy=Wy, Wz=Wz)
     if m.get("type") == "truss":
-        for k in ("Iy", "Iz", "J"):
+        for k in ("Iy", "Iz", "J", "Wy", "Wz"):
             del out[k]
     if r.boolean(sec.get("timoshenko", False), f"{es}.timoshenko"):
         if any(k in m for k in ("Asy", "Asz", "shear_coefficient")):

@@ -121,6 +121,8 @@ class Member:
     Asy: float = 0.0             # shear areas (Timoshenko beam); 0: no shear deformation
     Asz: float = 0.0
     releases: tuple = ()         # ((node, (local rotations 0=rx 1=ry 2=rz, ...)), ...)
+    Wy: float = 0.0              # elastic section moduli for stresses; 0: not given
+    Wz: float = 0.0
 
     @property
     def timoshenko(self):
