@@ -1,0 +1,149 @@
+"""`cranefe loads` (docs/loads.md): the dynamic factors computed from simulations,
+against the single-mass closed forms (through the API and the CLI), and the internal
+consistency of a tower crane's load table."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+import cranefe
+from cranefe.analysis.loads import sdof, standard
+from cranefe.cli import main
+
+MODELS = os.path.join(os.path.dirname(__file__), "..", "models")
+SCENE = os.path.join(MODELS, "two_mass_hoist_loads.yaml")
+G = 9.81
+
+
+@pytest.fixture(scope="module")
+def hoist():
+    return cranefe.loads(SCENE)
+
+
+@pytest.fixture(scope="module")
+def omega():
+    """Load-on-rope frequency with the drum held (its drive holds it), by the modal
+    analysis (an independent path): sqrt(n^2 EA / (L m)) = 14.77 rad/s."""
+    m = cranefe.modes(SCENE.replace("_loads", ""), effects={"sway": False,
+                                                           "drive": "held"})
+    w = m.omega[~m.rigid]
+    assert len(w) == 1
+    return float(w[0])
+
+
+def _scene(tmp_path, text):
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: t\nmodel: " + os.path.abspath(
+        os.path.join(MODELS, "two_mass_hoist.yaml")) + "\n" + text)
+    return str(path)
+
+
+def test_phi2_is_one_plus_v_omega_over_g(hoist, omega):
+    # rigid drive from the grounded state: 1 + v w / g exactly (docs/transient.md); the
+    # trapezoidal rule keeps the amplitude, so the error is the peak's phase-sampling,
+    # O((w h)^4) = 1e-5 at w h = 0.06
+    curve = hoist.factors["phi2"]["curve"]
+    assert len(curve) == 5
+    for p in curve:
+        exact = float(sdof.phi2_rigid_drive(p["v_h_m_s"], omega))
+        assert p["value"] == pytest.approx(exact, rel=2e-5), p
+    d = hoist.factors["phi2"]["drive_classes"]
+    assert d["HD1"]["v_h_m_s"] == 0.5 and d["HD4"]["v_h_m_s"] == 0.25
+    assert d["HD2"]["value"] == d["HD3"]["value"]
+    assert d["HD2"]["v_h_m_s"] == pytest.approx(0.05)
+
+
+def test_phi5_of_a_jerk_limited_start(hoist, omega):
+    # acceleration rising over t_j: 1 + |sin(w t_j/2)|/(w t_j/2); the speed table is
+    # exact at its samples and the trapezoidal rule's phase error at w h = 0.06 gives
+    # ~1e-4 on the peak
+    p = hoist.factors["phi5"]["hoist"]
+    exact = float(sdof.phi5_ramp(omega, 0.25))
+    assert p["value"] == pytest.approx(exact, rel=3e-4)
+    assert p["acceleration_m_s2"] == pytest.approx(0.5 / (2.0 - 0.25))
+    # HD5 (pre-tensioned, then this start): phi2 = 1 + phi5 a / g
+    hd5 = hoist.factors["phi2"]["drive_classes"]["HD5"]
+    assert hd5["value"] == pytest.approx(1 + p["value"] * p["acceleration_m_s2"] / G,
+                                         rel=1e-9)
+
+
+def test_phi3_sudden_release(hoist):
+    # a quarter dropped at once: 1 - 2 dm/m = 0.5 (beta3 = 1), exact for one mass; the
+    # modal run (all modes) with Hermite-tracked peaks: 1e-6
+    p = hoist.factors["phi3"]
+    assert p["dm_over_m"] == 0.25
+    assert p["value"] == pytest.approx(1 - 2 * 0.25, abs=1e-6)
+    assert p["standard"] == pytest.approx(0.5)
+    assert p["beta3_equivalent"] == pytest.approx(1.0, abs=4e-6)
+
+
+def test_phi3_release_over_time(tmp_path, omega):
+    # spread over t_r: 1 - (dm/m)(1 + A(w' t_r)), w' of the remaining mass
+    path = _scene(tmp_path, "analysis:\n  type: loads\n  hoist: {speed: 0.25}\n"
+                  "  release: {fraction: 0.4, time: 0.3}\n  after_lift_off: 1.0\n"
+                  "  time_step: 0.004\n")
+    r = cranefe.loads(path)
+    w1 = omega / np.sqrt(0.6)
+    low, _ = sdof.phi3_linear_release(0.4, w1, 0.3)
+    assert r.factors["phi3"]["value"] == pytest.approx(float(low), abs=2e-4)
+
+
+def test_phi1_of_a_rigid_structure_is_one(hoist):
+    p = hoist.factors["phi1"]
+    assert p["value"] == 1.0 and p["by_mass"] == {}
+    assert "rigid" in p["assumes"]
+
+
+def test_phi4_phi6_phi7(hoist):
+    f = hoist.factors
+    assert f["phi6"]["value"] == pytest.approx(0.5 * (1 + f["phi2"]["value"]))
+    assert f["phi4"]["value"] is None and "step" in f["phi4"]["missing"]
+    assert f["phi7"]["value"] is None and "buffer" in f["phi7"]["missing"]
+
+
+def test_cli_json_is_the_api_document(hoist, capsys):
+    assert main(["loads", SCENE, "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    api = json.loads(json.dumps(hoist.to_dict()))
+    for d in (doc, api):
+        d.pop("timings_s")
+        for s in d["simulations"]:
+            s.pop("seconds")
+    assert doc == api
+    assert set(doc["factors"]) == {f"phi{k}" for k in range(1, 8)}
+    assert doc["factors"]["phi2"]["simulation"] in [s["name"] for s in doc["simulations"]]
+
+
+def test_bad_keys_exit_2(tmp_path, capsys):
+    path = _scene(tmp_path, "analysis:\n  type: loads\n  hoist: {sped: 1}\n")
+    assert main(["loads", path]) == 2
+    assert "analysis.hoist" in capsys.readouterr().err
+    path = _scene(tmp_path, "analysis:\n  type: loads\n  release: {fraction: 1.5}\n")
+    assert main(["loads", path]) == 2
+
+
+def test_tower_crane_table_is_consistent():
+    """The hammerhead's load table (models/hammerhead_loads.yaml): phi6 from phi2, the
+    hoisting class from the computed curve, the crane's masses moving (phi1 > 1)."""
+    r = cranefe.loads(os.path.join(MODELS, "hammerhead_loads.yaml"))
+    f = r.factors
+    p2 = f["phi2"]
+    v = np.array([p["v_h_m_s"] for p in p2["curve"]])
+    phi = np.array([p["value"] for p in p2["curve"]])
+    assert np.all(np.diff(phi) > 0)                 # faster lifts, larger factors
+    within = p2["behaves_like"]["within"]
+    if within is not None:
+        assert np.all(phi <= standard.phi2(within, v) + 1e-12)
+        lower = list(standard.HOISTING_CLASSES)[list(standard.HOISTING_CLASSES)
+                                                  .index(within) - 1] \
+            if within != "HC1" else None
+        assert lower is None or np.any(phi > standard.phi2(lower, v))
+    else:
+        assert np.any(phi > standard.phi2("HC4", v))
+    assert f["phi6"]["value"] == pytest.approx(0.5 * (1 + p2["value"]), rel=1e-12)
+    assert f["phi6"]["standard"] == pytest.approx(0.5 * (1 + p2["standard"]), rel=1e-12)
+    assert f["phi1"]["value"] > 1.0 and f["phi1"]["lower"] < 1.0
+    assert f["phi3"]["value"] < 1.0
+    assert 1.0 < f["phi5"]["hoist"]["value"] <= 2.0 + 1e-9
