@@ -147,3 +147,28 @@ def test_tower_crane_table_is_consistent():
     assert f["phi1"]["value"] > 1.0 and f["phi1"]["lower"] < 1.0
     assert f["phi3"]["value"] < 1.0
     assert 1.0 < f["phi5"]["hoist"]["value"] <= 2.0 + 1e-9
+
+
+def test_sweep_of_factors_is_exact(tmp_path, omega):
+    """`factors.phi2` as a sweep output (only the HD1 lift-off runs): over the hook
+    load, 1 + v w(m) / g with w^2 = n^2 k / m scaling as 1/m."""
+    from cranefe.sweeps.engine import run_sweep
+    from cranefe.sweeps.spec import load_sweep
+    from cranefe.sweeps.summary import summarise
+    path = tmp_path / "chart.yaml"
+    path.write_text(f"cranefe: 1\nbase: {os.path.abspath(SCENE)}\nparameters:\n"
+                    "  masses.H: {values: [2600, 5200]}\n"
+                    "outputs: [factors.phi2, factors.phi5.hoist, frequency_hz.1]\n")
+    s = load_sweep(str(path))
+    t = summarise(s, run_sweep(s, workers=0)).table
+    assert list(t.status) == ["ok", "ok"]
+    for m, (phi2, phi5, f1) in zip(t.values[:, 0], t.results):
+        w = omega * np.sqrt(5200 / m)
+        assert phi2 == pytest.approx(float(sdof.phi2_rigid_drive(0.5, w)), rel=2e-5)
+        assert phi5 == pytest.approx(float(sdof.phi5_ramp(w, 0.25)), rel=3e-4)
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("cranefe: 1\nbase: " + os.path.abspath(os.path.join(
+        MODELS, "two_mass_hoist.yaml")) + "\nparameters:\n  masses.H: {values: [1]}\n"
+        "outputs: [factors.phi2]\n")
+    with pytest.raises(cranefe.errors.ModelError, match="loads scene"):
+        load_sweep(str(bad))

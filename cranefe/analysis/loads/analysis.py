@@ -26,17 +26,29 @@ from .runs import (hook_per_drum, hoist_start, joint_move, lift_model, lift_off,
 from .scene import complete, parse
 
 
-def loads(model):
+ALL = ("phi1", "phi2", "phi3", "phi5", "phi6")
+
+
+def loads(model, only=None):
     """Compute the factors of `model` (a model, a transient scene or a loads scene)
-    -> `LoadsResult`."""
+    -> `LoadsResult`. only : names among ALL to compute with the fewest runs (a sweep's
+    outputs): phi2 then comes from the declared drive class's speed alone (no curve, no
+    class), phi6 with it.
+
+    Length: the factors' runs in the order docs/loads.md lists them, each guarded by
+    whether it is wanted.
+    """
     t0 = time.perf_counter()
+    want = set(only or ALL)
+    if "phi6" in want:
+        want.add("phi2")
     spec0 = parse(model)
     file = model.scene_file or model.file
     work = placed(model, spec0)
     lift = lift_model(work)
     ratio = hook_per_drum(lift, spec0.drum)
     spec = complete(spec0, ratio, file)
-    traces, warnings = [], []
+    traces, warnings, results = [], [], []
     g = float(np.linalg.norm(model.gravity))
 
     def drum(v):                      # hook speed (m/s) -> drum speed (rad/s)
@@ -44,33 +56,59 @@ def loads(model):
 
     # phi2 curve: rigid drive at each steady speed, the fastest first (its lift-off
     # time, scaled by the speeds, is the next runs' first guess)
+    vh = standard.characteristic_speed(spec.drive_class, spec.speed, spec.creep, "A1")
+    if only is None:
+        speeds = spec.speeds
+    else:
+        speeds = (spec.speed,) if "phi1" in want else ()
+        if "phi2" in want and spec.drive_class != "HD5":
+            speeds = tuple(sorted({*speeds, vh}))
     curve, runs, t_full = [], {}, None
-    for v in sorted(spec.speeds, reverse=True):
-        guess = None if t_full is None else 1.05 * t_full * spec.speed / v
+    for v in sorted(speeds, reverse=True):
+        guess = None if t_full is None else 1.05 * t_full * max(speeds) / v
         res, tr = lift_off(lift, spec, f"lift-off {v:.4g} m/s", drum(v), guess=guess)
         t_full = t_full or res.lift_off_time
         traces.append(tr)
         runs[v] = res
+        results.append(res)
         curve.insert(0, _phi2_point(res, spec, v, tr.name))
     # HD5: pre-tensioned to the lift-off (the hanging state at rest), then the drive's
     # own start: the hoist-start run, which is also phi5's
-    start, trs, acc = hoist_start(lift, spec, drum(spec.speed))
-    traces.append(trs)
-    phi2 = _phi2(spec, curve, _phi2_point(start, spec, 0.0, trs.name))
-    full = runs[max(runs)]
-    phi1 = _phi1(lift, full, g, traces[0].name)
-    rel, reduced, trr = release(lift, spec)
-    traces.append(trr)
-    phi3 = _phi3(lift, reduced, rel, spec, trr.name)
-    phi5 = {spec.drum: _phi5_hoist(start, spec, trs.name, g, acc * ratio)}
+    start = None
+    if only is None or spec.drum in want or "phi5" in want or \
+            ("phi2" in want and spec.drive_class == "HD5"):
+        start, trs, acc = hoist_start(lift, spec, drum(spec.speed))
+        traces.append(trs)
+        results.append(start)
+    factors = {}
+    if "phi2" in want:
+        hd5 = _phi2_point(start, spec, 0.0, trs.name) if start is not None else None
+        factors["phi2"] = _phi2(spec, curve, hd5)
+    if "phi1" in want:
+        factors["phi1"] = _phi1(lift, runs[spec.speed], g, traces[0].name)
+    if "phi3" in want:
+        rel, reduced, trr = release(lift, spec)
+        traces.append(trr)
+        results.append(rel)
+        factors["phi3"] = _phi3(lift, reduced, rel, spec, trr.name)
+    if only is None:
+        factors["phi4"] = _phi4(model)
+    phi5 = {}
+    if start is not None:
+        phi5[spec.drum] = _phi5_hoist(start, spec, trs.name, g, acc * ratio)
     for move in spec.moves:
-        res, tr, a_max = joint_move(work, spec, move)
-        traces.append(tr)
-        phi5[move.joint] = _phi5_joint(work, res, spec, move, tr.name, a_max)
-    for tr_res in [*runs.values(), rel, start]:
-        warnings += [w for w in tr_res.warnings if not w.startswith("modes:")]
-    factors = {"phi1": phi1, "phi2": phi2, "phi3": phi3, "phi4": _phi4(model),
-               "phi5": phi5, "phi6": _phi6(phi2), "phi7": _phi7(model)}
+        if only is None or "phi5" in want or move.joint in want:
+            res, tr, a_max = joint_move(work, spec, move)
+            traces.append(tr)
+            phi5[move.joint] = _phi5_joint(work, res, spec, move, tr.name, a_max)
+    if phi5:
+        factors["phi5"] = phi5
+    if "phi6" in want:
+        factors["phi6"] = _phi6(factors["phi2"])
+    if only is None:
+        factors["phi7"] = _phi7(model)
+    for r in results:
+        warnings += [w for w in r.warnings if not w.startswith("modes:")]
     return LoadsResult(model.name, model.scene, file, spec, ratio, factors,
                        tuple(traces), tuple(spec.assumed), tuple(dict.fromkeys(warnings)),
                        {"total": time.perf_counter() - t0})
@@ -94,20 +132,23 @@ def _phi2_point(res, spec, v, name):
 
 
 def _phi2(spec, curve, hd5):
-    v = np.array([p["v_h_m_s"] for p in curve])
-    p = np.array([p["value"] for p in curve])
+    pts = curve or [dict(hd5, v_h_m_s=0.0)]
+    v = np.array([p["v_h_m_s"] for p in pts])
+    p = np.array([p["value"] for p in pts])
     cls = standard.behaves_like(v, p)
     declared = spec.hoisting_class or cls["within"] or "HC4"
     by_drive = {}
     for hd in standard.DRIVE_CLASSES:
         vh = standard.characteristic_speed(hd, spec.speed, spec.creep, "A1")
         if hd == "HD5":
-            point = dict(hd5, v_h_m_s=0.0)
+            point = dict(hd5, v_h_m_s=0.0) if hd5 is not None else None
         else:
-            point = next(c for c in curve if abs(c["v_h_m_s"] - vh) <= 1e-12 * spec.speed)
-        by_drive[hd] = dict(point, text=standard.DRIVE_CLASS_TEXT[hd],
-                            standard={hc: float(standard.phi2(hc, vh))
-                                      for hc in standard.HOISTING_CLASSES})
+            point = next((c for c in curve
+                          if abs(c["v_h_m_s"] - vh) <= 1e-12 * spec.speed), None)
+        if point is not None:
+            by_drive[hd] = dict(point, text=standard.DRIVE_CLASS_TEXT[hd],
+                                standard={hc: float(standard.phi2(hc, vh))
+                                          for hc in standard.HOISTING_CLASSES})
     chosen = by_drive[spec.drive_class]
     return {
         "value": chosen["value"], "drive_class": spec.drive_class,
