@@ -239,10 +239,13 @@ def joint_move(model, spec, move, output_step=0.01):
          "a_max": a_max, "j_max": a_max / move.jerk}
     a = {"type": "operation", "duration": duration, "output_step": output_step,
          "drives": {move.joint: {key: move.joint, "profile": prof}}}
+    if spec.tolerance is not None:
+        a["tolerance"] = spec.tolerance
     m = replace(model.with_effects(sway=True, damping="none"), analysis=a,
                 scene=f"loads: {move.joint} move")
     res = simulate(m)
     params = {"joint": move.joint, "kind": move.kind, "profile": prof,
+              "tolerance": spec.tolerance, "output_step_s": output_step,
               "effects": {"sway": True, "damping": "none"}}
     return res, Trace(f"{move.joint} move", "operation", params, duration, int(res.steps),
                       time.perf_counter() - t0), a_max

@@ -15,7 +15,8 @@ import numpy as np
 from ...errors import ModelError
 from ...model.load import _Reader
 
-KEYS = {"type", "hoist", "release", "drives", "after_lift_off", "time_step", "radius",
+KEYS = {"type", "hoist", "release", "drives", "after_lift_off", "time_step", "tolerance",
+        "radius",
         "radius_nodes", "hook_height", "hoisting_class", "drive_class"}
 HOIST_KEYS = {"drum", "load", "speed", "creep", "ramp", "jerk_time"}
 RELEASE_KEYS = {"fraction", "time"}
@@ -65,6 +66,7 @@ class LoadsSpec:
     hoisting_class: str = None  # declared HC1-HC4 (None: the one the crane behaves like)
     drive_class: str = "HD1"  # declared hoist drive class of phi2's `value`
     assumed: tuple = ()       # sentences: what was taken as default, and from where
+    tolerance: float = None   # operation engine's tolerance (None: its default)
 
     @property
     def speeds(self):
@@ -131,8 +133,10 @@ def parse(model):
     dc = raw.get("drive_class", "HD1")
     if dc not in ("HD1", "HD2", "HD3", "HD4", "HD5"):
         r.fail("analysis.drive_class", f"{dc!r} is not one of HD1 ... HD5")
-    return LoadsSpec(drum, loads, speed, creep, ramp, jerk, fraction, rtime, moves, after, step,
-                     radius, rnodes, height, hc, dc, tuple(assumed))
+    tol = r.number(raw["tolerance"], "analysis.tolerance", positive=True) \
+        if "tolerance" in raw else None
+    return LoadsSpec(drum, loads, speed, creep, ramp, jerk, fraction, rtime, moves, after,
+                     step, radius, rnodes, height, hc, dc, tuple(assumed), tol)
 
 
 def _drum(model, r, hoist, assumed):
