@@ -13,7 +13,7 @@ from cranefe.analysis.loads import sdof, standard
 from cranefe.cli import main
 
 MODELS = os.path.join(os.path.dirname(__file__), "..", "models")
-SCENE = os.path.join(MODELS, "two_mass_hoist_loads.yaml")
+SCENE = os.path.join(MODELS, "loads", "two_mass_hoist_loads.yaml")
 G = 9.81
 
 
@@ -26,7 +26,7 @@ def hoist():
 def omega():
     """Load-on-rope frequency with the drum held (its drive holds it), by the modal
     analysis (an independent path): sqrt(n^2 EA / (L m)) = 14.77 rad/s."""
-    m = cranefe.modes(SCENE.replace("_loads", ""), effects={"sway": False,
+    m = cranefe.modes(os.path.join(MODELS, "two_mass_hoist.yaml"), effects={"sway": False,
                                                            "drive": "held"})
     w = m.omega[~m.rigid]
     assert len(w) == 1
@@ -125,9 +125,9 @@ def test_bad_keys_exit_2(tmp_path, capsys):
 
 
 def test_tower_crane_table_is_consistent():
-    """The hammerhead's load table (models/hammerhead_loads.yaml): phi6 from phi2, the
+    """The hammerhead's load table (models/loads/hammerhead_loads.yaml): phi6 from phi2, the
     hoisting class from the computed curve, the crane's masses moving (phi1 > 1)."""
-    r = cranefe.loads(os.path.join(MODELS, "hammerhead_loads.yaml"))
+    r = cranefe.loads(os.path.join(MODELS, "loads", "hammerhead_loads.yaml"))
     f = r.factors
     p2 = f["phi2"]
     v = np.array([p["v_h_m_s"] for p in p2["curve"]])

@@ -19,7 +19,7 @@ CHART = ("analysis.radius", "masses.HOOK", "analysis.hook_height")
 
 def _sweep(folder, values, name):
     """A copy of models/sweeps/hammerhead_load_chart.yaml with these grid values."""
-    base = os.path.abspath(os.path.join(MODELS, "hammerhead_load_chart.yaml"))
+    base = os.path.abspath(os.path.join(MODELS, "loads", "hammerhead_load_chart.yaml"))
     params = "\n".join(f"  {p}: {{values: {list(v)}}}" for p, v in zip(CHART, values))
     path = os.path.join(folder, f"{name}.yaml")
     with open(path, "w") as fh:
@@ -38,7 +38,7 @@ def run(outdir, quick=False):
     from ..sweeps.spec import load_sweep
     from ..sweeps.summary import summarise
     paths = []
-    table = loads(os.path.join(MODELS, "two_mass_hoist_loads.yaml" if quick
+    table = loads(os.path.join(MODELS, "loads", "two_mass_hoist_loads.yaml" if quick
                                else "hammerhead_loads.yaml"))
     rows = [{"factor": f, "case": c, "computed": "" if v is None else v,
              "standard": "" if s is None else s, "from": src}

@@ -337,10 +337,12 @@ def _phi5_joint(model, res, spec, move, name, a_max):
     lo, hi, text = standard.phi5_guidance(sudden=move.jerk == 0)
     return {"value": float(abs(F[i]) / rigid), "standard": [lo, hi], "standard_text": text,
             "kind": move.kind, "acceleration": float(a_rigid),
-            "ramp_s": move.ramp, "jerk_time_s": move.jerk, "rigid_body_force_N": float(rigid),
+            "ramp_s": move.ramp, "jerk_time_s": move.jerk,
+            "rigid_body_force_N": float(rigid),
             "peak_force_N": float(abs(F[i])), "peak_time_s": float(t[i]),
             "simulation": name, "clause": standard.CLAUSES["phi5"],
-            "assumes": "computed on the operation engine (large motions, sway on, undamped): "
+            "assumes": "computed on the operation engine (large motions, sway on, "
+                       "undamped): "
                        "the hanging masses' inertia force along the motion (slider axis; "
                        "tangential for a hinge) over their rigid-body force m a; the "
                        "carrier's own mass moves rigidly (phi5 = 1 for it)"}

@@ -207,7 +207,8 @@ def release(model, spec):
     from ...system import assemble
     n = assemble(reduced).dofs.n
     duration = spec.release_time + spec.after_lift_off
-    a = dict(_steps(spec, reduced), duration=duration, method="modal", modes=n, initial="static",
+    a = dict(_steps(spec, reduced), duration=duration, method="modal", modes=n,
+             initial="static",
              forces={spec.loads[0]: drive})
     res = _transient(reduced, "release", a)
     params = {"load": spec.loads[0], "mass_kg": m, "released_kg": dm,
@@ -228,7 +229,8 @@ def joint_move(model, spec, move, output_step=0.01):
     up = -model.gravity / np.linalg.norm(model.gravity)
     heights = [model.coords[model.node_index[n]] @ up for n in spec.loads]
     top = max(model.coords[:, :] @ up)
-    period = 2 * np.pi * np.sqrt(max(top - min(heights), 1.0) / np.linalg.norm(model.gravity))
+    length = max(top - min(heights), 1.0)
+    period = 2 * np.pi * np.sqrt(length / np.linalg.norm(model.gravity))
     move_time = abs(move.distance) / move.v_max + move.ramp
     duration = move_time + 0.75 * period
     key = "slider" if move.kind == "slider" else "hinge"

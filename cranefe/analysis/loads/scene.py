@@ -246,7 +246,8 @@ def _moves(model, r, raw, assumed):
         r.keys(spec, e, DRIVE_KEYS)
         j = joints[name]
         if j.type == "slider":
-            d = dict(SLIDER_MOVE, **{k: v for k, v in spec.items() if not k.endswith("deg")})
+            d = dict(SLIDER_MOVE, **{k: v for k, v in spec.items()
+                                      if not k.endswith("deg")})
             v, dist = r.number(d["v_max"], f"{e}.v_max", positive=True), \
                 r.number(d["distance"], f"{e}.distance")
         else:
