@@ -196,3 +196,52 @@ def test_phi5_of_a_trolley_move_on_the_operation_engine(tmp_path):
     assert set(r.factors) == {"phi5"} and set(r.factors["phi5"]) == {"trolley_travel"}
     assert p["value"] == pytest.approx(float(sdof.phi5_ramp(w, 1.0)), rel=5e-4)
     assert p["acceleration"] == pytest.approx(0.5 / (ramp - 1.0))
+
+
+LUFFING_MODEL = """cranefe: 1
+name: A jib luffing on a hinge, the load on a 10 m rope below its tip
+nodes:
+  O:   [0.0, 0.0, 0.0]
+  TIP: [0.0, 0.0, 20.0]
+  D:   [-1.0, 0.0, 0.5]
+  L:   [0.0, 0.0, 10.0]
+ground: [O]
+masses:
+  L: 2000
+bodies:
+  jib: {mass: 3000, com: [0.0, 0.0, 10.0], inertia: [1.0e3, 1.0e5, 1.0e5],
+        nodes: [TIP, D]}
+joints:
+  - {name: luffing, type: hinge, bodies: [ground, jib], at: O, axis: [0, 1, 0]}
+springs:
+  - {name: luffing_gear, type: rotational, bodies: [ground, jib], at: O, axis: [0, 1, 0],
+     stiffness: 1.0e9}
+drums:
+  hoist: {node: D, radius: 0.2, inertia: 5.0, brake: false, rope_reserve: 20.0,
+          motor: {rotor_inertia: 0.05, gear_ratio: 30}}
+ropes:
+  hoist_rope: {EA: 5.0e7, path: [hoist, TIP, L]}
+"""
+
+
+def test_phi5_of_a_luffing_hinge(tmp_path):
+    """A hinge with a horizontal axis (luffing): the tip, 20 m above the hinge, moves
+    horizontally by 20 x the angle (its height changes only to second order); the load
+    on its 10 m rope then sees the drive's s-curve, and the horizontal force over m a is
+    the single-mass 1 + |sin(w t_j/2)|/(w t_j/2), w = sqrt(g/l) (the acceleration
+    phase t_j + one period long leaves no swing). Tolerance 1e-3: the tip's vertical
+    acceleration 20 alpha phi and the lever's change over 1.5 deg (second order), the
+    exact pendulum, second differences (measured 2.8e-4)."""
+    (tmp_path / "luff.yaml").write_text(LUFFING_MODEL)
+    w = float(np.sqrt(G / 10.0))
+    ramp = float(1.0 + 2 * np.pi / w)
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: t\nmodel: luff.yaml\nanalysis:\n  type: loads\n"
+                    "  hoist: {speed: 0.2}\n  tolerance: 1.0e-9\n  drives:\n"
+                    f"    luffing: {{v_max_deg: 0.5, ramp: {ramp!r}, jerk_time: 1.0, "
+                    "distance_deg: 5.0}\n")
+    r = cranefe.loads(str(path), only=["luffing"])
+    p = r.factors["phi5"]["luffing"]
+    assert p["kind"] == "hinge"
+    assert p["acceleration"] == pytest.approx(20 * np.radians(0.5) / (ramp - 1.0))
+    assert p["value"] == pytest.approx(float(sdof.phi5_ramp(w, 1.0)), rel=1e-3)

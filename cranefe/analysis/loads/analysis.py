@@ -307,31 +307,51 @@ def _phi5_hoist(res, spec, name, g, a):
                        "braking over the same ramp mirrors it while the rope stays taut"}
 
 
+def suspension_node(model, hanging):
+    """The node the hanging masses hang from: the other end of the span (most falls)
+    that joins a hanging mass to a node that is not one."""
+    idx = model.node_index
+    hang = {idx[n] for n in hanging}
+    best = None
+    for rope in model.ropes:
+        for a, b, f in zip(rope.span_a, rope.span_b, rope.falls):
+            for x, y in ((a, b), (b, a)):
+                if x in hang and y not in hang and (best is None or f > best[0]):
+                    best = (f, int(y))
+    return None if best is None else best[1]
+
+
 def _phi5_joint(model, res, spec, move, name, a_max):
-    """Peak horizontal (slider: along its axis; hinge: tangential) inertia force of the
-    hanging masses over their rigid-body inertia force m a (a: the carrier's
-    acceleration at the loads' starting position)."""
+    """Peak inertia force of the hanging masses along the motion of their suspension
+    point (slider: its axis; hinge: the horizontal tangent of the suspension point's
+    circle at the drive's current angle) over their rigid-body force m a (a: the
+    suspension point's acceleration along that line at a_max of the drive)."""
     t = res.times
     X = res.mass_position                              # (nt, nm, 3)
-    sel = [res.mass_names.index(n) for n in spec.loads]
     hang = [k for k, n in enumerate(res.mass_names) if n in res.sway_names]
     masses = dict(zip((model.node_names[int(i)] for i in model.masses.nodes),
                       model.masses.mass))
     m = np.array([masses[res.mass_names[k]] for k in hang])
-    acc = np.gradient(np.gradient(X[:, hang], t, axis=0), t, axis=0)
+    acc = np.gradient(np.gradient(X[:, hang], t, axis=0), t, axis=0)   # (nt, nh, 3)
     joint = next(j for j in model.joints if j.name == move.joint)
+    up = -model.gravity / np.linalg.norm(model.gravity)
     if move.kind == "slider":
-        e = np.broadcast_to(joint.axis, X[:, hang].shape)
+        e = np.broadcast_to(joint.axis, (len(t), 3))
         a_rigid = a_max
     else:
+        n = joint.axis
         c = model.coords[joint.at]
-        d = X[:, hang] - c
-        e = np.cross(joint.axis, d)
-        e -= (e @ joint.axis)[..., None] * joint.axis
-        e /= np.linalg.norm(e, axis=-1, keepdims=True)
-        r0 = np.linalg.norm(np.cross(joint.axis, X[0, sel[0]] - c))
-        a_rigid = r0 * a_max
-    F = np.einsum("k,tkj,tkj->t", m, acc, e)
+        top = suspension_node(model, [res.mass_names[k] for k in hang])
+        s0 = (model.coords[top] if top is not None else X[0, hang[0]]) - c
+        phi = res.drive_position[:, list(res.drive_names).index(move.joint)]
+        cs, sn = np.cos(phi)[:, None], np.sin(phi)[:, None]
+        s = s0 * cs + np.cross(n, s0) * sn + np.outer(1 - cs[:, 0], n * (n @ s0))
+        e = np.cross(n, s)                             # tangent of the circle (x r)
+        e -= (e @ up)[:, None] * up                    # its horizontal part
+        lever = np.linalg.norm(e[0])
+        e = e / np.linalg.norm(e, axis=1, keepdims=True)
+        a_rigid = lever * a_max
+    F = np.einsum("k,tkj,tj->t", m, acc, e)
     rigid = m.sum() * a_rigid
     i = int(np.argmax(np.abs(F)))
     lo, hi, text = standard.phi5_guidance(sudden=move.jerk == 0)
@@ -342,10 +362,10 @@ def _phi5_joint(model, res, spec, move, name, a_max):
             "peak_force_N": float(abs(F[i])), "peak_time_s": float(t[i]),
             "simulation": name, "clause": standard.CLAUSES["phi5"],
             "assumes": "computed on the operation engine (large motions, sway on, "
-                       "undamped): "
-                       "the hanging masses' inertia force along the motion (slider axis; "
-                       "tangential for a hinge) over their rigid-body force m a; the "
-                       "carrier's own mass moves rigidly (phi5 = 1 for it)"}
+                       "undamped): the hanging masses' inertia force along the motion of "
+                       "their suspension point (the slider's axis; for a hinge the "
+                       "horizontal tangent of its circle) over their rigid-body force m a; "
+                       "the carrier's own mass moves rigidly (phi5 = 1 for it)"}
 
 
 # ----------------------------------------------------------------- phi4, 6, 7
