@@ -298,6 +298,11 @@ def _phi5_hoist(res, spec, name, g, a):
             "jerk_time_s": spec.jerk,
             "rigid_body_force_N": float(rigid),
             "peak_force_N": float(res.rope_force_max[k]),
+            # braking from steady full speed over the same profile: the mirror image of
+            # the start (a linear system at constant speed is its static state)
+            "braking": {"value": float(val), "lowest_force_N": float(
+                res.rope_force_static[k] - val * rigid),
+                "slack": bool(res.rope_force_static[k] - val * rigid < 0)},
             "peak_time_s": float(res.rope_force_max_time[k]), "simulation": name,
             "clause": standard.CLAUSES["phi5"],
             "assumes": "phi5 multiplies the change of drive force of a rigid-body model; "
