@@ -17,7 +17,7 @@ The API functions are imported on first use, so ``import cranefe`` stays light.
 
 __version__ = "0.1.0"
 
-_API = ("load", "modes", "damping", "simulate", "luff", "sweep")
+_API = ("load", "modes", "damping", "simulate", "luff", "sweep", "loads")
 __all__ = list(_API)
 
 

@@ -10,7 +10,7 @@ import os
 import time
 from dataclasses import replace
 
-__all__ = ["load", "modes", "damping", "simulate", "luff", "sweep"]
+__all__ = ["load", "modes", "damping", "simulate", "luff", "sweep", "loads"]
 
 
 def load(path):
@@ -94,3 +94,12 @@ def sweep(spec, workers=None, scheduler=None, reuse=True):
     from .sweeps.summary import summarise
     s = load_sweep(os.fspath(spec))
     return summarise(s, run_sweep(s, workers=workers, scheduler=scheduler, reuse=reuse))
+
+
+def loads(model, only=None):
+    """Dynamic factors of EN 13001-2 from simulations of the crane (a model, a transient
+    scene or a loads scene, ``analysis: {type: loads}``) -> `LoadsResult`, whose
+    ``to_dict()`` is ``cranefe loads --json`` (docs/loads.md). only : factor or drive
+    names (``["phi2"]``, ``["trolley_travel"]``) to run just the simulations they need."""
+    from .analysis.loads.analysis import loads as _loads
+    return _loads(_model(model), only=only)

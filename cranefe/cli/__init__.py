@@ -11,7 +11,7 @@ from .. import __version__
 from ..errors import AnalysisError, ModelError
 
 COMMANDS = ("modes", "damping", "simulate", "check", "show", "study", "generate",
-            "sweep", "luff")
+            "sweep", "luff", "loads")
 
 
 def _parser():

@@ -47,8 +47,8 @@ def run(args):
     run_ = summarise(sweep, done)
     table, failed = run_.table, run_.failed
     if args.plots:
-        from ..sweeps.plots import plot_table
-        for path in plot_table(table, args.plots):
+        from ..sweeps.plots import heat_maps, plot_table
+        for path in plot_table(table, args.plots) + heat_maps(table, args.plots):
             print(f"wrote {path}", file=sys.stderr)
     summary = run_.to_dict()
     if args.json:

@@ -33,7 +33,7 @@ MAX_ROPE_ELEMENTS_TOTAL = 2_000_000   # rope_mass x every fall of every rope wit
 # Magnitudes a number in a file may have: products and quotients of a few of them stay
 # far inside double precision (1e308), so no inf or 0 appears in the arrays.
 MIN_NUMBER, MAX_NUMBER = 1e-60, 1e60
-ANALYSIS_TYPES = ("modes", "damping", "transient", "luffing", "operation")
+ANALYSIS_TYPES = ("modes", "damping", "transient", "luffing", "operation", "loads")
 
 
 def load(path, text=None):

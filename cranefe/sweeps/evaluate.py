@@ -53,9 +53,19 @@ class Variant:
         laws = {o.split(".")[1] for o in self.outputs if o.startswith("luffing.")}
         return law_figures(self.model, sorted(laws))
 
+    @cached_property
+    def loads(self):
+        from ..analysis.loads.analysis import loads
+        only = {o.split(".")[-1] for o in self.outputs if o.startswith("factors.")}
+        return loads(self.model, only=sorted(only))
+
     def value(self, name):
         """The output `name` (grammar: cranefe.sweeps.spec.OUTPUT)."""
         kind, _, arg = name.partition(".")
+        if kind == "factors":
+            f, _, drive = arg.partition(".")
+            p = self.loads.factors[f]
+            return (p[drive] if drive else p)["value"]
         if kind == "dofs":
             return self.modal.dofs
         if kind in ("phi2", "rope_force_max"):
@@ -89,6 +99,10 @@ def evaluate(job):
     t0 = time.perf_counter()
     try:
         model = build(*apply(raw, parameters, values))
+        if model.analysis.get("type") == "loads":      # the working point (radius, hook
+            from ..analysis.loads.runs import placed    # height) for every output
+            from ..analysis.loads.scene import parse
+            model = placed(model, parse(model))
         variant = Variant(model, outputs, count, REUSE if reuse else None)
         out = [float(variant.value(o)) for o in outputs]
         return {"index": index, "values": list(map(float, values)), "outputs": out,

@@ -17,9 +17,11 @@ from ..outpaths import inside, named_path
 SWEEP_KEYS = {"cranefe", "sweep", "base", "parameters", "sampling", "outputs", "modes",
               "output"}
 OUTPUT = re.compile(r"^(frequency_hz|omega|period_s|damping_ratio)\.([1-9][0-9]*)$|^dofs$"
-                    r"|^(phi2|rope_force_max)\.[A-Za-z0-9_-]+$|^luffing\.\w+\.\w+$")
+                    r"|^(phi2|rope_force_max)\.[A-Za-z0-9_-]+$|^luffing\.\w+\.\w+$"
+                    r"|^factors\.phi[1236]$|^factors\.phi5\.[A-Za-z0-9_-]+$")
 # outputs that need a scene of this analysis type as the base
-NEEDS = {"phi2": "transient", "rope_force_max": "transient", "luffing": "luffing"}
+NEEDS = {"phi2": "transient", "rope_force_max": "transient", "luffing": "luffing",
+         "factors": "loads"}
 
 
 MAX_VARIANTS = 1_000_000     # variants of one sweep, checked before any is made
@@ -135,7 +137,8 @@ def _output(o, entry, raw, r):
         r.fail(entry, f"unknown output {o!r}; use frequency_hz.K, omega.K, period_s.K, "
                "damping_ratio.K (K = 1 for the first elastic mode), dofs; with a transient "
                "scene as base phi2.ROPE, rope_force_max.ROPE; with a luffing scene "
-               "luffing.LAW.FIGURE (docs/sweeps.md)")
+               "luffing.LAW.FIGURE; with a loads scene factors.phi1, factors.phi2, "
+               "factors.phi3, factors.phi6, factors.phi5.DRIVE (docs/sweeps.md)")
     kind, _, arg = o.partition(".")
     if kind not in NEEDS:
         return
@@ -145,6 +148,8 @@ def _output(o, entry, raw, r):
         r.fail(entry, f"{o} needs a {NEEDS[kind]} scene as the base (one with "
                f"'analysis: {{type: {NEEDS[kind]}, ...}}'); the base is "
                + (f"a {analysis.get('type', 'modes')} scene" if raw[3] else "a model file"))
+    if kind == "factors":
+        return
     if kind == "luffing":
         from ..analysis.luffing.analysis import ALL_LAWS, FIGURES
         law, _, figure = arg.partition(".")
