@@ -214,3 +214,50 @@ def test_newer_format_is_refused(tmp_path, written):
     archive.seal(p)                        # as a newer cranefe would have sealed it
     with pytest.raises(ModelError, match="newer than this cranefe reads"):
         archive.read(p)
+
+
+# ------------------------------------------------------------------ cranefe show
+
+@pytest.mark.parametrize("group", ["modes", "damping", "transient", "luffing", "operation"])
+def test_show_prints_every_result_as_its_command_does(written, group, capsys):
+    """`cranefe show` prints each result's table (the one its own command prints, from
+    the values read back) and, with --json, its JSON document."""
+    from cranefe.cli import main
+    from cranefe.cli.show import _presenters
+    from cranefe.outputs.report import dumps
+    path, result = written[group]
+    table, document = _presenters()[type(result).__name__]
+    assert main(["show", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert f"results/{group} ({type(result).__name__}):\n{table(result)}" in out
+    assert main(["show", str(path), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["results"] == [group]
+    assert doc["documents"][group] == json.loads(dumps(document(result)))
+
+
+def test_show_prints_modes_and_damping_of_one_archive_and_of_format_1(tmp_path, capsys):
+    from cranefe.cli import main
+    out = tmp_path / "d.h5"
+    assert main(["damping", HOIST, "--method", "both", "--archive", str(out)]) == 0
+    capsys.readouterr()
+    for path in (out, V1):
+        assert main(["show", str(path)]) == 0
+        text = capsys.readouterr().out
+        assert "results/damping (DampingResult):" in text and "zeta exact" in text
+        assert "results/modes (ModalResult):" in text and "w [rad/s]" in text
+        assert "0.01592" in text              # zeta = psi / (4 pi), psi = 0.2
+
+
+def test_simulate_writes_the_archive_of_an_operation_scene(tmp_path, capsys):
+    from cranefe.cli import main
+    scene = operation_scene(str(tmp_path), duration=3)
+    out = tmp_path / "op.h5"
+    assert main(["simulate", scene, "--json", "--archive", str(out)]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    back = archive.read(out).results["operation"]
+    assert json.loads(json.dumps(back.to_dict(), default=str))["rope_force_max_N"] == \
+        doc["rope_force_max_N"]
+    assert back.mass_position.shape == (len(back.times), 1, 3)
+    assert main(["show", str(out)]) == 0
+    assert "results/operation (OperationResult):" in capsys.readouterr().out

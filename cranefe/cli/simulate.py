@@ -58,10 +58,10 @@ def run_operation(args, model):
     from ..analysis.operation.integrate import simulate
     from ..analysis.operation.output import plot, table, write_csv
     from ..outputs.report import dumps
-    if args.archive or args.xdmf:
+    if args.xdmf:
         from ..errors import ModelError
-        raise ModelError("--archive and --xdmf are not written for operation scenes yet; "
-                         "use --json, --csv or --plots")
+        raise ModelError("--xdmf is not written for operation scenes yet; use --archive, "
+                         "--json, --csv, --plots or --animate")
     progress = _Progress()
     failed = None
     try:
@@ -78,11 +78,24 @@ def run_operation(args, model):
         written.append(write_csv(args.csv, result))
     if args.plots:
         written += plot(args.plots, result)
+    written += _operation_outputs(args, model, result)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)
     if failed is not None:
         raise failed
     return 0
+
+
+def _operation_outputs(args, model, result):
+    """--archive of an operation run (also of a run that failed part-way: what it
+    computed, with its status); no coordinates or matrices, as for luffing."""
+    written = []
+    if args.archive is not None:
+        from ..outputs import archive
+        written.append(archive.write(args.archive, model, None, {"operation": result},
+                                     command=["cranefe"] + args.argv,
+                                     timings=result.timings))
+    return written
 
 
 def run(args):
