@@ -39,7 +39,12 @@ def add_output_arguments(p):
     g.add_argument("--xdmf", metavar="OUT.xdmf", help="write an XDMF series (one step per "
                    "mode)")
     g.add_argument("--images", metavar="DIR", help="render one PNG per mode (off-screen)")
-    g.add_argument("--animate", action="store_true", help="with --images: a GIF per mode")
+    g.add_argument("--animate", nargs="?", const="gif", choices=("gif", "mp4"),
+                   help="with --images: an animation per mode, GIF (default) or MP4 "
+                   "(needs imageio-ffmpeg)")
+    g.add_argument("--view", choices=("iso", "xy", "xz", "yz"),
+                   help="with --images: the direction of view (default: xz for a plane "
+                   "model, else iso)")
     g.add_argument("--image-size", metavar="WxH", default="1024x768",
                    help=f"image size in pixels (default 1024x768, at most "
                    f"{MAX_IMAGE_SIDE} a side)")
@@ -108,7 +113,8 @@ def write_outputs(args, model, system, results, modal):
     if args.images is not None:
         from ..outputs.render import render_modes
         written += render_modes(args.images, model, system.dofs, modal,
-                                size=_size(args.image_size), animate=args.animate)
+                                size=_size(args.image_size), animate=args.animate,
+                                view=args.view)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)
     return written
