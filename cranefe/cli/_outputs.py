@@ -89,10 +89,40 @@ def check_outputs(args, model=None):
         plan.folder(f"--{name}", getattr(args, name, None))
     if getattr(args, "image_size", None) is not None:
         _size(args.image_size)
-    if getattr(args, "animate", False) and not getattr(args, "images", None):
-        from ..errors import ModelError
-        raise ModelError("--animate needs --images DIR")
+    animate = getattr(args, "animate", None)
+    if animate and hasattr(args, "images"):        # modes, damping: a format of --images
+        if not args.images:
+            from ..errors import ModelError
+            raise ModelError("--animate needs --images DIR")
+    elif animate:                                   # simulate: a file
+        _animation_file(plan, animate)
     return plan
+
+
+def _animation_file(plan, path):
+    import os
+
+    from ..errors import ModelError
+    if os.path.splitext(path)[1].lower() not in (".gif", ".mp4"):
+        raise ModelError("give a file name ending in .gif or .mp4", None,
+                         f"--animate {path!r}")
+    plan.file("--animate", path)
+
+
+def add_animation_arguments(p):
+    """simulate: --animate FILE.gif|FILE.mp4 with --view and --image-size."""
+    p.add_argument("--animate", metavar="OUT.gif", help="an operation scene: the crane "
+                   "moving, with the loads' trails (GIF, or MP4 for a name ending in "
+                   ".mp4, which needs imageio-ffmpeg)")
+    p.add_argument("--view", choices=("iso", "xy", "xz", "yz"),
+                   help="with --animate: the direction of view (default: xz for a plane "
+                   "model, else iso)")
+    p.add_argument("--image-size", metavar="WxH", default="1024x768",
+                   help="with --animate: frame size in pixels (default 1024x768)")
+
+
+def image_size(args):
+    return _size(args.image_size)
 
 
 def write_outputs(args, model, system, results, modal):

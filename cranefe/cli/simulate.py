@@ -23,6 +23,8 @@ def add_arguments(p):
     p.add_argument("--xdmf", metavar="OUT.xdmf", help="displacements as an XDMF time "
                    "series for ParaView")
     p.add_argument("--plots", metavar="DIR", help="PNG plot of the histories (DIR/transient.png)")
+    from ._outputs import add_animation_arguments
+    add_animation_arguments(p)
 
 
 class _Progress:
@@ -95,6 +97,11 @@ def _operation_outputs(args, model, result):
         written.append(archive.write(args.archive, model, None, {"operation": result},
                                      command=["cranefe"] + args.argv,
                                      timings=result.timings))
+    if args.animate is not None and len(result.times):
+        from ..outputs.movie import animate_operation
+        from ._outputs import image_size
+        written.append(animate_operation(args.animate, model, result,
+                                         size=image_size(args), view=args.view))
     return written
 
 
@@ -108,6 +115,10 @@ def run(args):
     check_outputs(args, model)
     if model.analysis.get("type") == "operation":
         return run_operation(args, model)
+    if args.animate is not None:
+        from ..errors import ModelError
+        raise ModelError("--animate draws operation scenes (analysis: {type: operation}); "
+                         "for a transient scene use --plots or --xdmf")
     progress = _Progress()
     try:
         result = simulate(model, progress=progress)
