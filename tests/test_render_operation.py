@@ -94,3 +94,15 @@ def test_animate_refuses_other_files_and_transient_scenes(tmp_path, capsys, run)
     transient = os.path.join(ROOT, "models", "two_mass_hoist_start.yaml")
     assert main(["simulate", transient, "--animate", str(tmp_path / "x.gif")]) == 2
     assert "operation scenes" in capsys.readouterr().err
+
+
+def test_mp4_without_imageio_ffmpeg_is_refused_before_the_run(tmp_path, capsys,
+                                                                 monkeypatch, run):
+    import sys
+    monkeypatch.setitem(sys.modules, "imageio_ffmpeg", None)
+    assert main(["simulate", run[0], "--animate", str(tmp_path / "x.mp4")]) == 2
+    assert "imageio-ffmpeg" in capsys.readouterr().err
+    assert main(["modes", os.path.join(ROOT, "models", "two_mass_hoist.yaml"), "--images",
+                 str(tmp_path / "i"), "--animate", "mp4"]) == 2
+    assert "imageio-ffmpeg" in capsys.readouterr().err
+    assert not os.path.exists(tmp_path / "i")

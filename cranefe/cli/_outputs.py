@@ -94,6 +94,9 @@ def check_outputs(args, model=None):
         if not args.images:
             from ..errors import ModelError
             raise ModelError("--animate needs --images DIR")
+        if animate == "mp4":
+            from ..outputs.render import _need_ffmpeg
+            _need_ffmpeg()
     elif animate:                                   # simulate: a file
         _animation_file(plan, animate)
     return plan
@@ -107,6 +110,9 @@ def _animation_file(plan, path):
         raise ModelError("give a file name ending in .gif or .mp4", None,
                          f"--animate {path!r}")
     plan.file("--animate", path)
+    if path.lower().endswith(".mp4"):
+        from ..outputs.render import _need_ffmpeg
+        _need_ffmpeg()
 
 
 def add_animation_arguments(p):
