@@ -126,12 +126,16 @@ def run(args):
         progress.close()
     print(dumps(document(result)) if args.json else table(result))
     written = []
-    if args.csv is not None:
-        from ..analysis.transient.output import write_csv
-        written.append(write_csv(args.csv, result))
-    if args.archive is not None or args.xdmf is not None:
+    system = None
+    if args.archive is not None or args.xdmf is not None or (
+            model.bodies and (args.csv is not None or args.plots is not None)):
         from ..system import assemble
         system = assemble(model)
+    if args.csv is not None:
+        from ..outputs.histories import write_transient_csv
+        written.append(write_transient_csv(args.csv, result, model,
+                                           system.dofs if system is not None else None))
+    if args.archive is not None or args.xdmf is not None:
         if args.archive is not None:
             from ..outputs import archive
             written.append(archive.write(args.archive, model, system, {"transient": result},
@@ -146,6 +150,9 @@ def run(args):
     if args.plots is not None:
         from ..analysis.transient.output import plot
         written += plot(args.plots, result)
+        if system is not None:
+            from ..outputs.histories import plot_bodies
+            written += plot_bodies(args.plots, result, model, system.dofs)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)
     return 0
