@@ -126,7 +126,7 @@ def _write_member(g, name, v, units=None, description=None, field=None):
         return sub
     if _is_scalar(v):
         kind = type(v).__name__ if type(v) in (bool, int, float, str) else \
-            np.asarray(v).dtype.name
+            "numpy." + np.asarray(v).dtype.name
         d = _dataset(g, name, v if not isinstance(v, str) else np.array(v, dtype=object))
         _describe(d, None if isinstance(v, str) or isinstance(v, (bool, np.bool_))
                   else units, description, field, kind)
@@ -186,8 +186,8 @@ def _read_member(m):
         return m.asstr()[()]
     if kind in ("bool", "int", "float"):
         return {"bool": bool, "int": int, "float": float}[kind](m[()])
-    if kind != "array":                     # a numpy scalar: its dtype's name
-        return np.dtype(kind).type(m[()])
+    if kind.startswith("numpy."):           # a numpy scalar: its dtype's name
+        return np.dtype(kind[6:]).type(m[()])
     return m[()]
 
 
