@@ -118,6 +118,89 @@ def _drum_axis(model, drum):
     return np.array([0.0, 1.0, 0.0])
 
 
+def add_ground(p, model, points):
+    """The floor, a post from every ground node above it down to the floor with a base
+    block, and each drum as a short cylinder at its node, into plotter p.
+
+    Returns (floor height, the floor slab's 8 corners, [(drum actor, node)])."""
+    import pyvista as pv
+    L = model.length_scale
+    up = _up(model)
+    floor = (points @ up).min()
+    for i in _ground_nodes(model):
+        x = model.coords[i]
+        foot = x - (x @ up - floor) * up
+        if x @ up - floor > 0.02 * L:
+            p.add_mesh(pv.Line(x, foot), color=GROUND_COLOUR, line_width=7)
+        p.add_mesh(pv.Cube(center=x, x_length=0.025 * L, y_length=0.025 * L,
+                           z_length=0.025 * L), color=GROUND_COLOUR)
+    # the floor: a thin slab under the whole crane
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    centre = 0.5 * (lo + hi)
+    centre = centre - (centre @ up - floor) * up - 0.004 * L * up
+    span = np.maximum(hi - lo, 0.3 * L) * 1.15
+    sizes = np.where(np.abs(up) > 0.9, 0.008 * L, span)
+    p.add_mesh(pv.Cube(center=centre, x_length=sizes[0], y_length=sizes[1],
+                       z_length=sizes[2]), color=FLOOR_COLOUR)
+    signs = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)])
+    drums = []
+    for d in model.drums:
+        r = max(d.radius, 0.02 * L)
+        cyl = pv.Cylinder(center=model.coords[d.node], direction=_drum_axis(model, d),
+                          radius=r, height=r, resolution=32)
+        drums.append((p.add_mesh(cyl, color=GROUND_COLOUR), d.node))
+    return floor, centre + 0.5 * signs * sizes, drums
+
+
+def fit_camera(p, view, cloud, up, floor, length):
+    """Set one parallel-projection camera of `view` on plotter p that sees every point
+    of `cloud` (k, 3) and its foot on the floor, with room for the title (above), the
+    colour bar (right) and the triad (left); returns p.camera_position."""
+    direction, view_up = (np.array(v, dtype=float) for v in _DIRECTIONS[view])
+    direction /= np.linalg.norm(direction)
+    cloud = np.vstack([cloud, cloud - ((cloud @ up) - floor)[:, None] * up])
+    right = np.cross(view_up, direction)
+    right /= np.linalg.norm(right)
+    true_up = np.cross(direction, right)
+    u, v = cloud @ right, cloud @ true_up
+    w, h = p.window_size
+    # the crane in the middle 70 % of the width and 80 % of the height
+    half_h = max((v.max() - v.min()) / 2 / 0.80, (u.max() - u.min()) / 2 / 0.70 / (w / h),
+                 1e-3 * length)
+    mid = right * (u.max() + u.min()) / 2 + true_up * ((v.max() + v.min()) / 2
+                                                        + 0.05 * half_h)
+    depth = cloud @ direction
+    mid = mid + direction * (depth.max() + depth.min()) / 2
+    dist = 4.0 * max(np.ptp(cloud, axis=0).max(), length)
+    cam = p.camera
+    p.enable_parallel_projection()
+    cam.focal_point = tuple(mid)
+    cam.position = tuple(mid + dist * direction)
+    cam.up = tuple(true_up)
+    cam.parallel_scale = half_h
+    p.renderer.ResetCameraClippingRange()
+    return p.camera_position
+
+
+def pixels(p, points):
+    """(row, column) in plotter p's image of world points (k, 3)."""
+    from vtkmodules.vtkRenderingCore import vtkCoordinate
+    coord = vtkCoordinate()
+    coord.SetCoordinateSystemToWorld()
+    h = p.window_size[1]
+    out = []
+    for x in np.atleast_2d(points):
+        coord.SetValue(*map(float, x))
+        c, r = coord.GetComputedDoubleDisplayValue(p.renderer)
+        out.append((int(round(h - 1 - r)), int(round(c))))
+    return np.array(out)
+
+
+def check_view(view):
+    if view is not None and view not in VIEWS:
+        raise ModelError(f"--view {view!r}: give one of {', '.join(VIEWS)}")
+
+
 class ModeScene:
     """The crane of one model in one off-screen plotter, for all its modes.
 
@@ -128,8 +211,7 @@ class ModeScene:
     def __init__(self, model, dofs, result, size=(1024, 768), view=None):
         backend()
         import pyvista as pv
-        if view is not None and view not in VIEWS:
-            raise ModelError(f"--view {view!r}: give one of {', '.join(VIEWS)}")
+        check_view(view)
         self.view = view or ("xz" if model.planar else "iso")
         self.model, self.result = model, result
         self.mesh = mesh = line_mesh(model, dofs)
@@ -171,74 +253,16 @@ class ModeScene:
         p.camera_position = self.camera
 
     def _ground(self, pv):
-        """The floor, a post from every ground node above it down to the floor with a
-        base plate, and each drum as a short cylinder at its node."""
-        model, p, L = self.model, self.p, self.model.length_scale
-        up = _up(model)
-        pts = np.asarray(self.mesh.points, dtype=float)
-        height = pts @ up
-        floor = height.min()
-        base = []
-        for i in _ground_nodes(model):
-            x = model.coords[i]
-            foot = x - (x @ up - floor) * up
-            if x @ up - floor > 0.02 * L:
-                p.add_mesh(pv.Line(x, foot), color=GROUND_COLOUR, line_width=7)
-            base.append(foot)
-            p.add_mesh(pv.Cube(center=x, x_length=0.025 * L, y_length=0.025 * L,
-                               z_length=0.025 * L), color=GROUND_COLOUR)
-        # the floor: a thin slab under the whole crane
-        lo, hi = pts.min(axis=0), pts.max(axis=0)
-        centre = 0.5 * (lo + hi)
-        centre = centre - (centre @ up - floor) * up - 0.004 * L * up
-        span = np.maximum(hi - lo, 0.3 * L) * 1.15
-        sizes = np.where(np.abs(up) > 0.9, 0.008 * L, span)
-        p.add_mesh(pv.Cube(center=centre, x_length=sizes[0], y_length=sizes[1],
-                           z_length=sizes[2]), color=FLOOR_COLOUR)
-        signs = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)])
-        self.floor_corners = centre + 0.5 * signs * sizes
-        self.drums = []
-        for d in model.drums:
-            r = max(d.radius, 0.02 * L)
-            cyl = pv.Cylinder(center=model.coords[d.node], direction=_drum_axis(model, d),
-                              radius=r, height=r, resolution=32)
-            actor = p.add_mesh(cyl, color=GROUND_COLOUR)
-            self.drums.append((actor, d.node))
-        self.floor = floor
+        self.floor, self.floor_corners, self.drums = add_ground(
+            self.p, self.model, np.asarray(self.mesh.points, dtype=float))
 
     def _fit_camera(self):
-        """One parallel-projection camera for every mode: it sees the undeformed crane,
-        the floor and every mode's extreme shapes (+-1), with room for the title, the
-        colour bar and the triad."""
-        direction, view_up = (np.array(v, dtype=float) for v in _DIRECTIONS[self.view])
-        direction /= np.linalg.norm(direction)
+        """One camera for every mode: it sees the undeformed crane, the floor and every
+        mode's extreme shapes (+-1)."""
         pts = np.asarray(self.mesh.points, dtype=float)
         cloud = np.vstack([pts] + [pts + s * d for d in self.disp for s in (1, -1)])
-        up = _up(self.model)
-        cloud = np.vstack([cloud, cloud - ((cloud @ up) - self.floor)[:, None] * up])
-        right = np.cross(view_up, direction)
-        right /= np.linalg.norm(right)
-        true_up = np.cross(direction, right)
-        u, v = cloud @ right, cloud @ true_up
-        w, h = self.p.window_size
-        aspect = w / h
-        # the crane in the middle 70 % of the width (bar on the right, triad on the
-        # left) and 80 % of the height (title above)
-        half_h = max((v.max() - v.min()) / 2 / 0.80, (u.max() - u.min()) / 2 / 0.70 / aspect,
-                     1e-3 * self.model.length_scale)
-        mid = right * (u.max() + u.min()) / 2 + true_up * ((v.max() + v.min()) / 2
-                                                            + 0.05 * half_h)
-        depth = cloud @ direction
-        mid = mid + direction * (depth.max() + depth.min()) / 2
-        dist = 4.0 * max(np.ptp(cloud, axis=0).max(), self.model.length_scale)
-        cam = self.p.camera
-        self.p.enable_parallel_projection()
-        cam.focal_point = tuple(mid)
-        cam.position = tuple(mid + dist * direction)
-        cam.up = tuple(true_up)
-        cam.parallel_scale = half_h
-        self.p.renderer.ResetCameraClippingRange()
-        return self.p.camera_position
+        return fit_camera(self.p, self.view, cloud, _up(self.model), self.floor,
+                          self.model.length_scale)
 
     def show(self, k, phase=1.0):
         """Draw mode k with its displacement times `phase`."""
@@ -274,16 +298,7 @@ class ModeScene:
 
     def pixels(self, points):
         """(row, column) in the image of world points (k, 3), for tests and labels."""
-        from vtkmodules.vtkRenderingCore import vtkCoordinate
-        coord = vtkCoordinate()
-        coord.SetCoordinateSystemToWorld()
-        h = self.p.window_size[1]
-        out = []
-        for x in np.atleast_2d(points):
-            coord.SetValue(*map(float, x))
-            c, r = coord.GetComputedDoubleDisplayValue(self.p.renderer)
-            out.append((int(round(h - 1 - r)), int(round(c))))
-        return np.array(out)
+        return pixels(self.p, points)
 
     def close(self):
         self.p.close()
