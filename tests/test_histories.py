@@ -51,3 +51,31 @@ def test_body_columns_follow_the_point_masses(histories):
 def test_bodies_are_plotted(histories):
     d, _, _ = histories
     assert sorted(os.listdir(d / "p")) == ["transient.png", "transient_bodies.png"]
+
+
+def test_operation_csv_has_the_bodies(tmp_path):
+    """The overhead crane's trolley runs on a slider along x: its centre of mass moves
+    by the drive's position along x and does not turn; the drive column of the same CSV
+    is the reference."""
+    import re
+    ops = os.path.join(ROOT, "models", "operations")
+    text = open(os.path.join(ops, "overhead_crane_estop.yaml")).read()
+    text = text.replace("model: overhead_crane.yaml",
+                        "model: " + os.path.join(ops, "overhead_crane.yaml"))
+    text = re.sub(r"duration: \d+", "duration: 3", text).replace("output_step: 0.02",
+                                                                 "output_step: 0.1")
+    scene = tmp_path / "estop.yaml"
+    scene.write_text(text)
+    out = tmp_path / "op.csv"
+    assert main(["simulate", str(scene), "--csv", str(out)]) == 0
+    with open(out, newline="") as fh:
+        rows = list(csv.reader(fh))
+    cols = {n: np.array([float(r[k]) for r in rows[1:]]) for k, n in enumerate(rows[0])}
+    model = load(str(scene))
+    com = np.asarray(model.bodies[0].com)
+    s = cols["trolley.position"] - cols["trolley.position"][0]
+    assert s[-1] > 1.0
+    np.testing.assert_allclose(cols["body_trolley.x_m"], com[0] + s, atol=1e-8)
+    np.testing.assert_allclose(cols["body_trolley.z_m"], com[2], atol=1e-12)
+    for a in "xyz":
+        np.testing.assert_allclose(cols[f"body_trolley.r{a}_rad"], 0.0, atol=1e-12)

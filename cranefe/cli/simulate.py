@@ -58,7 +58,7 @@ def run_operation(args, model):
     """An operation scene (docs/operations.md): large motions of the drives."""
     from ..errors import AnalysisError
     from ..analysis.operation.integrate import simulate
-    from ..analysis.operation.output import plot, table, write_csv
+    from ..analysis.operation.output import plot, table
     from ..outputs.report import dumps
     if args.xdmf:
         from ..errors import ModelError
@@ -77,7 +77,8 @@ def run_operation(args, model):
     print(dumps(result.to_dict()) if args.json else table(result))
     written = []
     if args.csv:
-        written.append(write_csv(args.csv, result))
+        from ..outputs.histories import write_operation_csv
+        written.append(write_operation_csv(args.csv, result, model))
     if args.plots:
         written += plot(args.plots, result)
     written += _operation_outputs(args, model, result)

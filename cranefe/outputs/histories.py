@@ -1,6 +1,7 @@
-"""Time histories of the rigid bodies of a transient run (a trolley, a girder, a boom):
-the displacement of each body's centre of mass and its rotation, recovered from the
-generalised coordinates (u = T q), added to the transient CSV and plotted."""
+"""Time histories of the rigid bodies (a trolley, a girder, a boom) in the CSVs: of a
+transient run, each body's centre-of-mass displacement and small rotation recovered from
+the generalised coordinates (u = T q), also plotted; of an operation run, each body's
+centre-of-mass position and rotation vector as its joints move it."""
 
 import csv
 import os
@@ -91,3 +92,52 @@ def plot_bodies(folder, result, model, dofs):
     save_figure(fig, path, dpi=110)
     plt.close(fig)
     return [path]
+
+
+def operation_body_histories(model, result):
+    """(centre-of-mass positions (nt, nb, 3) m in the global frame, rotation vectors
+    (nt, nb, 3) rad: axis times angle of each body's rotation from the reference) of
+    an operation run at its sample times. Bodies move with their joints as the drives
+    prescribe them (the operation engine's `Mechanism.body_motions`)."""
+    from scipy.spatial.transform import Rotation
+
+    from ..analysis.operation.mechanism import Mechanism
+    from ..analysis.operation.scene import parse
+    mech = Mechanism(model, parse(model))
+    nb, nt = len(model.bodies), len(result.times)
+    com0 = np.array([b.com for b in model.bodies], dtype=float).reshape(nb, 3)
+    pos, rot = np.zeros((nt, nb, 3)), np.zeros((nt, nb, 3))
+    for i, t in enumerate(result.times):
+        motions = mech.body_motions(float(t))
+        for b in range(nb):
+            R, p = motions[b][0], motions[b][3]
+            pos[i, b] = R @ com0[b] + p
+            rot[i, b] = Rotation.from_matrix(R).as_rotvec()
+    return pos, rot
+
+
+def write_operation_csv(path, result, model):
+    """The operation CSV (`analysis.operation.output.write_csv`) followed by six columns
+    per body: body_BODY.x_m, .y_m, .z_m (its centre of mass) and body_BODY.rx_rad, .ry_rad,
+    .rz_rad (its rotation vector); written atomically. Returns the path."""
+    import tempfile
+
+    from ..analysis.operation.output import write_csv
+    from ..outpaths import atomic
+    if not model.bodies:
+        return write_csv(path, result)
+    pos, rot = operation_body_histories(model, result)
+    with tempfile.TemporaryDirectory() as d:
+        with open(write_csv(os.path.join(d, "base.csv"), result), newline="") as fh:
+            rows = list(csv.reader(fh))
+    cols = []
+    for b in model.bodies:
+        cols += [f"body_{b.name}.{a}_m" for a in "xyz"] + \
+            [f"body_{b.name}.r{a}_rad" for a in "xyz"]
+    extra = np.concatenate([pos, rot], axis=2).reshape(len(result.times), -1)
+    with atomic(path) as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(rows[0] + cols)
+        for row, x in zip(rows[1:], extra):
+            w.writerow(row + [f"{v:.9g}" for v in x])
+    return path
