@@ -59,7 +59,12 @@ def add_output_arguments(p):
     g.add_argument("--xdmf", metavar="OUT.xdmf", help="write an XDMF series (one step per "
                    "mode)")
     g.add_argument("--images", metavar="DIR", help="render one PNG per mode (off-screen)")
-    g.add_argument("--animate", action="store_true", help="with --images: a GIF per mode")
+    g.add_argument("--animate", nargs="?", const="gif", choices=("gif", "mp4"),
+                   help="with --images: an animation per mode, GIF (default) or MP4 "
+                   "(needs imageio-ffmpeg)")
+    g.add_argument("--view", choices=("iso", "xy", "xz", "yz"),
+                   help="with --images: the direction of view (default: xz for a plane "
+                   "model, else iso)")
     g.add_argument("--image-size", metavar="WxH", default="1024x768",
                    help=f"image size in pixels (default 1024x768, at most "
                    f"{MAX_IMAGE_SIDE} a side)")
@@ -104,10 +109,46 @@ def check_outputs(args, model=None):
         plan.folder(f"--{name}", getattr(args, name, None))
     if getattr(args, "image_size", None) is not None:
         _size(args.image_size)
-    if getattr(args, "animate", False) and not getattr(args, "images", None):
-        from ..errors import ModelError
-        raise ModelError("--animate needs --images DIR")
+    animate = getattr(args, "animate", None)
+    if animate and hasattr(args, "images"):        # modes, damping: a format of --images
+        if not args.images:
+            from ..errors import ModelError
+            raise ModelError("--animate needs --images DIR")
+        if animate == "mp4":
+            from ..outputs.render import _need_ffmpeg
+            _need_ffmpeg()
+    elif animate:                                   # simulate: a file
+        _animation_file(plan, animate)
     return plan
+
+
+def _animation_file(plan, path):
+    import os
+
+    from ..errors import ModelError
+    if os.path.splitext(path)[1].lower() not in (".gif", ".mp4"):
+        raise ModelError("give a file name ending in .gif or .mp4", None,
+                         f"--animate {path!r}")
+    plan.file("--animate", path)
+    if path.lower().endswith(".mp4"):
+        from ..outputs.render import _need_ffmpeg
+        _need_ffmpeg()
+
+
+def add_animation_arguments(p):
+    """simulate: --animate FILE.gif|FILE.mp4 with --view and --image-size."""
+    p.add_argument("--animate", metavar="OUT.gif", help="an operation scene: the crane "
+                   "moving, with the loads' trails (GIF, or MP4 for a name ending in "
+                   ".mp4, which needs imageio-ffmpeg)")
+    p.add_argument("--view", choices=("iso", "xy", "xz", "yz"),
+                   help="with --animate: the direction of view (default: xz for a plane "
+                   "model, else iso)")
+    p.add_argument("--image-size", metavar="WxH", default="1024x768",
+                   help="with --animate: frame size in pixels (default 1024x768)")
+
+
+def image_size(args):
+    return _size(args.image_size)
 
 
 def write_outputs(args, model, system, results, modal, member_forces=None):
@@ -132,7 +173,8 @@ def write_outputs(args, model, system, results, modal, member_forces=None):
     if args.images is not None:
         from ..outputs.render import render_modes
         written += render_modes(args.images, model, system.dofs, modal,
-                                size=_size(args.image_size), animate=args.animate)
+                                size=_size(args.image_size), animate=args.animate,
+                                view=args.view)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)
     return written

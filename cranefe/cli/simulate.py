@@ -23,8 +23,9 @@ def add_arguments(p):
     p.add_argument("--xdmf", metavar="OUT.xdmf", help="displacements as an XDMF time "
                    "series for ParaView")
     p.add_argument("--plots", metavar="DIR", help="PNG plot of the histories (DIR/transient.png)")
-    from ._outputs import add_member_force_arguments
+    from ._outputs import add_animation_arguments, add_member_force_arguments
     add_member_force_arguments(p)
+    add_animation_arguments(p)
 
 
 class _Progress:
@@ -58,12 +59,12 @@ def run_operation(args, model):
     """An operation scene (docs/operations.md): large motions of the drives."""
     from ..errors import AnalysisError
     from ..analysis.operation.integrate import simulate
-    from ..analysis.operation.output import plot, table, write_csv
+    from ..analysis.operation.output import plot, table
     from ..outputs.report import dumps
-    if args.archive or args.xdmf:
+    if args.xdmf:
         from ..errors import ModelError
-        raise ModelError("--archive and --xdmf are not written for operation scenes yet; "
-                         "use --json, --csv or --plots")
+        raise ModelError("--xdmf is not written for operation scenes yet; use --archive, "
+                         "--json, --csv, --plots or --animate")
     progress = _Progress()
     failed = None
     try:
@@ -77,9 +78,11 @@ def run_operation(args, model):
     print(dumps(result.to_dict()) if args.json else table(result))
     written = []
     if args.csv:
-        written.append(write_csv(args.csv, result))
+        from ..outputs.histories import write_operation_csv
+        written.append(write_operation_csv(args.csv, result, model))
     if args.plots:
         written += plot(args.plots, result)
+    written += _operation_outputs(args, model, result)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)
     if failed is not None:
@@ -100,6 +103,23 @@ def _member_force_envelope(model, result):
     return transient_envelope(model, system.dofs, solve_static(model).u, result.q)
 
 
+def _operation_outputs(args, model, result):
+    """--archive of an operation run (also of a run that failed part-way: what it
+    computed, with its status); no coordinates or matrices, as for luffing."""
+    written = []
+    if args.archive is not None:
+        from ..outputs import archive
+        written.append(archive.write(args.archive, model, None, {"operation": result},
+                                     command=["cranefe"] + args.argv,
+                                     timings=result.timings))
+    if args.animate is not None and len(result.times):
+        from ..outputs.movie import animate_operation
+        from ._outputs import image_size
+        written.append(animate_operation(args.animate, model, result,
+                                         size=image_size(args), view=args.view))
+    return written
+
+
 def run(args):
     from ..model import load
     from ..outputs.report import dumps
@@ -114,6 +134,10 @@ def run(args):
             raise ModelError("--member-forces is not computed for operation scenes yet; "
                              "use it with a transient scene", args.file)
         return run_operation(args, model)
+    if args.animate is not None:
+        from ..errors import ModelError
+        raise ModelError("--animate draws operation scenes (analysis: {type: operation}); "
+                         "for a transient scene use --plots or --xdmf")
     progress = _Progress()
     try:
         result = simulate(model, progress=progress)
@@ -126,12 +150,16 @@ def run(args):
             doc["member_forces"] = envelope.to_dict()
     print(dumps(doc) if args.json else table(result))
     written = []
-    if args.csv is not None:
-        from ..analysis.transient.output import write_csv
-        written.append(write_csv(args.csv, result))
-    if args.archive is not None or args.xdmf is not None:
+    system = None
+    if args.archive is not None or args.xdmf is not None or (
+            model.bodies and (args.csv is not None or args.plots is not None)):
         from ..system import assemble
         system = assemble(model)
+    if args.csv is not None:
+        from ..outputs.histories import write_transient_csv
+        written.append(write_transient_csv(args.csv, result, model,
+                                           system.dofs if system is not None else None))
+    if args.archive is not None or args.xdmf is not None:
         if args.archive is not None:
             from ..outputs import archive
             written.append(archive.write(args.archive, model, system, {"transient": result},
@@ -154,6 +182,9 @@ def run(args):
     if args.plots is not None:
         from ..analysis.transient.output import plot
         written += plot(args.plots, result)
+        if system is not None:
+            from ..outputs.histories import plot_bodies
+            written += plot_bodies(args.plots, result, model, system.dofs)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)
     return 0

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ModelError
+from ..model import units
 from ..model.load import _Reader, read_raw
 from ..model.yamlio import read_yaml
 from ..outpaths import inside, named_path
@@ -202,18 +204,20 @@ def _parameter(name, spec, raw, r):
                f"'{name}'; a parameter is a path into the model file, e.g. ropes.hoist.EA "
                "or masses.B (with a scene as the base also analysis... and effects...)")
     in_scene, target = found
-    if isinstance(target, bool) or not isinstance(target, (int, float)):
+    quantity = isinstance(target, str) and units.has_unit(target)   # '110 MN' in the base
+    if isinstance(target, bool) or not (isinstance(target, (int, float)) or quantity):
         r.fail(e, f"addresses {type(target).__name__} {target!r}, not a number; address "
                "the number itself (e.g. masses.B.mass)")
     r.keys(spec, e, {"values", "range", "count", "scale"})
     if "values" in spec:
         vals = r.listing(spec["values"], f"{e}.values", min_len=1)
-        return Parameter(name, path, in_scene, tuple(r.number(v, f"{e}.values[{i}]")
+        return Parameter(name, path, in_scene, tuple(_value(v, f"{e}.values[{i}]", name,
+                                                            raw, r)
                                                      for i, v in enumerate(vals)))
     if "range" not in spec:
         r.fail(e, "give 'values: [...]' or 'range: [low, high]' (with 'count' for a grid)")
     rng = r.listing(spec["range"], f"{e}.range", min_len=2)
-    lo, hi = r.number(rng[0], f"{e}.range[0]"), r.number(rng[1], f"{e}.range[1]")
+    lo, hi = (_value(rng[k], f"{e}.range[{k}]", name, raw, r) for k in (0, 1))
     if len(rng) != 2 or not lo < hi:
         r.fail(f"{e}.range", "must be [low, high] with low < high")
     log = spec.get("scale", "linear") == "log"
@@ -222,6 +226,26 @@ def _parameter(name, spec, raw, r):
     count = r.integer(spec["count"], f"{e}.count", minimum=1, maximum=MAX_VARIANTS,
                       why=": variants of one sweep") if "count" in spec else None
     return Parameter(name, path, in_scene, None, lo, hi, count, log)
+
+
+def _value(v, entry, name, raw, r):
+    """A parameter's value in SI: a number, or a quantity (`40 m/min`, `110 MN`) read by
+    the model files' units machinery (cranefe.model.units) for the entry the parameter
+    sets (a drum's `speed` also as a rope speed, by the drum's radius in the base)."""
+    if isinstance(v, str) and units.has_unit(v):
+        drums = {}
+        for dname, d in (raw[0].get("drums") or {}).items() if isinstance(raw[0], dict) \
+                else ():
+            radius = d.get("radius") if isinstance(d, dict) else None
+            if isinstance(radius, str) and units.has_unit(radius):
+                radius = units.convert(radius, f"drums.{dname}.radius", raw[1])
+            if isinstance(radius, (int, float)) and not isinstance(radius, bool):
+                drums[dname] = float(radius)
+        try:
+            v = units.convert(v, name, r.file, drums=drums)
+        except ModelError as exc:
+            raise ModelError(f"{exc.message} (the unit of {name})", r.file, entry) from None
+    return r.number(v, entry)
 
 
 def _grid(p):
