@@ -103,7 +103,8 @@ def parse(model):
                    "drive per drum or joint")
         seen[key] = d.name
     from .shaped import apply      # shaped moves (docs/shaping.md)
-    return apply(model, r, raw, Operation(duration, tol, max_step, out, drives))
+    return apply(model, r, raw, Operation(duration, tol, max_step, out, drives), _motion,
+                 _check_travel)
 
 
 def _joint_by_name(model, r, name, e):

@@ -222,16 +222,16 @@ def has_shaper(raw_drives):
     return False
 
 
-def apply(model, r, raw_drives, op):
+def apply(model, r, raw_drives, op, motion, check_travel):
     """The Operation `op` with every shaped move replaced by its convolution with its
     shaper. Moves are taken in the order they start, so that frequency: auto sees the
     geometry left by every move (shaped) before it. Returns `op` unchanged if no move is
     shaped.
 
     A shaped drive's motion is a ``ShapedMotion``: its ``shapers`` lists (move index,
-    Shaper, frequencies) of each shaped move.
+    Shaper, frequencies) of each shaped move. `motion` and `check_travel` are scene.py's
+    parser of one move and its check of a drive's travel (passed in: no import cycle).
     """
-    from . import scene
     if not has_shaper(raw_drives):
         return op
     drives = list(op.drives)
@@ -242,7 +242,7 @@ def apply(model, r, raw_drives, op):
             continue
         ps = _moves(spec["profile"])
         e = f"{d.entry}.profile" + ("[{}]" if isinstance(spec["profile"], list) else "")
-        ms = [scene._motion(r, p, e.format(i), d.target == "hinge")
+        ms = [motion(r, p, e.format(i), d.target == "hinge")
               for i, p in enumerate(ps)]
         moves[k] = ms
         for i, p in enumerate(ps):
@@ -271,5 +271,5 @@ def apply(model, r, raw_drives, op):
         drives[k] = dataclasses.replace(d, motion=ShapedMotion(
             c.t, c.s, c.v, c.a, c.j, c.kind, tuple(sorted(applied[k], key=lambda x: x[0]))))
     for k in moves:
-        scene._check_travel(model, r, drives[k], op.duration)
+        check_travel(model, r, drives[k], op.duration)
     return dataclasses.replace(op, drives=tuple(drives))
