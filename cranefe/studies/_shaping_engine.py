@@ -257,15 +257,25 @@ def swing_free(quick=False):
             free = min_time_swing_free(D, v, a, l_eq)
             target = "slider: trolley_travel" if drive == "trolley" else "hinge: slewing"
             acc, vp = free["acceleration"] / scale, free["acceleration"] * free["t_acc"] / scale
-            prof = (f"{{type: trapezoid, distance: {D / scale!r}, v_max: {vp!r}, "
-                    f"a_max: {acc!r}}}")
+            prof = (f"{{type: trapezoid, distance: {float(D / scale)!r}, v_max: "
+                    f"{float(vp)!r}, a_max: {float(acc)!r}}}")
             T = free["time_s"]
-            laws = [("min-time swing-free trapezoid", prof, T)]
+            laws = [(f"min-time swing-free trapezoid ({free['family']})", prof, T)]
+            # the fastest trapezoid whose ramps are each swing-free (t_a = T): it does
+            # not rely on the deceleration cancelling the acceleration's swing
+            Tp = free["period_s"]
+            a1 = min(a, v / Tp)
+            s1 = max(D / (a1 * Tp), Tp)
+            a1 = D / (Tp * s1)
+            laws.append(("swing-free trapezoid (acceleration: t_a = 1 T)",
+                         f"{{type: trapezoid, distance: {float(D / scale)!r}, v_max: "
+                         f"{float(a1 * Tp / scale)!r}, a_max: {float(a1 / scale)!r}}}",
+                         Tp + s1))
             if quick:
                 laws = []
             eo = energy_optimal_swing_free(D, 1.25 * T, l_eq)
             tab = eo["table"](300)
-            speed = [[t, s / scale] for t, s in zip(tab["times"], tab["values"])]
+            speed = [[float(t), float(s / scale)] for t, s in zip(tab["times"], tab["values"])]
             speed[-1][1] = 0.0
             laws.append(("energy-optimal swing-free, 1.25 x", "{type: table, speed: "
                          + repr(speed) + "}", 1.25 * T))
