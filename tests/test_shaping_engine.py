@@ -225,3 +225,48 @@ def test_a_shaped_move_that_runs_into_the_next_is_refused(tmp_path):
               "        - {type: trapezoid, distance: -1, v_max: 0.5, a_max: 0.5, start: 6}\n")
     with pytest.raises(ModelError, match="profile.1..start"):
         parse(m)
+
+
+# ------------------------------------------------------------------ docs = results
+
+DOCS = Path(__file__).resolve().parents[1] / "docs" / "shaping.md"
+RESULTS = Path(__file__).resolve().parents[1] / "results"
+
+
+def _rows(heading):
+    """The markdown table right after the paragraph starting with `heading`."""
+    text = DOCS.read_text().split(heading, 1)[1]
+    lines = [ln for ln in text.split("\n\n", 2)[1].splitlines() if ln.startswith("|")]
+    return [[c.strip() for c in ln.strip("|").split("|")] for ln in lines[2:]]
+
+
+def _agrees(quoted, value):
+    """A quoted figure is the CSV's value rounded to the digits shown."""
+    dec = len(quoted.split(".")[1]) if "." in quoted else 0
+    return abs(float(quoted) - value) <= 0.51 * 10.0 ** -dec
+
+
+def test_docs_tables_are_the_study_csvs():
+    """docs/shaping.md quotes results/shaping_engine.csv and
+    shaping_engine_robustness.csv (cranefe study shaping) digit for digit."""
+    import csv
+    with open(RESULTS / "shaping_engine.csv") as fh:
+        csv_rows = list(csv.DictReader(fh))
+    motion = None
+    checked = 0
+    for cells in _rows("**Every kind on each motion**"):
+        motion = cells[0].split(" (")[0].split(" ->")[0] or motion
+        shaper = cells[1].split(" (")[0]
+        row = next(r for r in csv_rows if r["motion"].startswith(motion.split()[0])
+                   and r["shaper"] == shaper)
+        for q, key in zip(cells[2:], ("residual_hook_deg", "residual_load_deg",
+                                      "move_time_s", "extra_time_s")):
+            if q != "-":
+                assert _agrees(q, float(row[key])), (cells, key, row[key])
+                checked += 1
+    assert checked == 59                      # 16 rows, the luffing crane has no LOAD
+    with open(RESULTS / "shaping_engine_robustness.csv") as fh:
+        rob = list(csv.DictReader(fh))
+    for cells in _rows("**Robustness: the assumed rope length wrong by e**"):
+        for q, r in zip(cells[1:], rob):
+            assert _agrees(q, float(r[f"{cells[0]}_load_deg"])), (cells, q, r)
