@@ -106,22 +106,53 @@ def _pendulum_hz(model, op, drive, t):
 
 
 def _tv_entry(model, op, drive, entry, n=4000):
-    """The time-varying ZV of the drive's move for mode 1 (sampled along the move from
-    the crane's quasi-static modes), times a ZV at mode 2's start frequency if the load
-    hangs on a hook (double pendulum): a table profile in the drive's units."""
-    import yaml
+    """The time-varying ZV of the drive's move for mode 1, times a ZV at mode 2's start
+    frequency if the load hangs on a hook (double pendulum): a table profile in the
+    drive's units. w(t) is sampled from the crane's quasi-static modes along the move,
+    the gain k (horizontal speed of the node the load hangs from per unit drive speed)
+    along it too; both are sampled again along the shaped move (one fixed-point pass:
+    they depend on where the shaped drive is, not where the unshaped one would be)."""
+    import dataclasses
 
-    from ..analysis.operation.shaped import auto_omegas
+    import yaml
+    from scipy.interpolate import CubicSpline
+
+    from ..analysis.operation import profiles
+    from ..analysis.operation.shaped import auto_omegas, crane_modes
     from ..analysis.shaping.varying import omega2_from_samples, time_varying_zv
-    d = next(x for x in op.drives if x.name == drive)
+    k = next(i for i, x in enumerate(op.drives) if x.name == drive)
+    d = op.drives[k]
     mv = d.motion
     t0, t1 = float(mv.t[0]), float(mv.t[-1])
+    dist = float(mv(1e9)[0])
     w_start = auto_omegas(model, op, d, t0)
     span = t1 + 1.2 * np.pi / min(w_start) + 5.0
     ts = np.linspace(t0, span, 61)
-    w1 = [auto_omegas(model, op, d, float(t))[0] for t in ts]
-    omega2 = omega2_from_samples(ts, w1)
-    t, v = time_varying_zv(mv.t, lambda x: mv(x)[2], omega2, float(mv(1e9)[0]), n=n)
+    cur = op
+    for _ in range(2):
+        dd = cur.drives[k]
+        w1 = [auto_omegas(model, cur, dd, float(t))[0] for t in ts]
+        omega2 = omega2_from_samples(ts, w1)
+        _, _, _, mech = crane_modes(model, cur, t0)
+        node = mech.root[0]
+        H = np.eye(3) - np.outer(mech.up, mech.up)
+        pos = np.array([dd.motion(float(t))[0] for t in ts])
+        Xh = np.array([H @ mech.kinematics(float(t))[0][node] for t in ts])
+        keep = np.concatenate([[True], np.diff(pos) > 1e-9 * abs(dist)])
+        if keep.sum() > 3:
+            spl = CubicSpline(pos[keep], Xh[keep])
+            der = spl.derivative()
+
+            def gain(t, dd=dd, der=der, lo=pos[keep][0], hi=pos[keep][-1]):
+                s = min(max(dd.motion(t)[0], lo), hi)
+                return float(np.linalg.norm(der(s)))
+        else:
+            gain = None
+        t, v = time_varying_zv(mv.t, lambda x: mv(x)[2], omega2, dist, n=n, gain=gain)
+        table = profiles.speed_table(t, v)
+        drives = list(cur.drives)
+        drives[k] = dataclasses.replace(dd, motion=table)
+        cur = dataclasses.replace(cur, drives=tuple(drives))
     spec = yaml.safe_load(entry)
     prof = {"type": "table", "speed": [[float(a), float(b)] for a, b in zip(t, v)]}
     if len(w_start) > 1:
@@ -177,6 +208,8 @@ def varying(quick=False):
             out["extra_time_s"] = out["move_time_s"] - ref["move_time_s"]
             row = _row(motion, "time-varying ZV", out)
             row["frequencies_hz"] = "w(t) along the move"
+            row["peak_speed_over_command"] = vpeak / float(
+                np.abs(next(x for x in op.drives if x.name == drive).motion.v).max())
             rows.append(row)
             for r in rows:
                 if r["motion"] == motion:

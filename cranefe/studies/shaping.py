@@ -168,6 +168,13 @@ def _engine(outdir, quick):
     paths.append(write_csv(outdir, "shaping_engine_robustness.csv", rob))
     free = se.swing_free(quick)
     paths.append(write_csv(outdir, "shaping_swing_free.csv", free))
+    paths.append(_engine_figure(outdir, rob, shapers, var))
+    return paths
+
+
+def _engine_figure(outdir, rob, shapers, var):
+    """results/shaping_engine.png: robustness (engine vs linear V) and the residuals
+    under hoisting, from the rows of shaping_engine_robustness.csv / shaping_varying.csv."""
     plt = pyplot()
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2))
     e = [100 * r["length_error"] for r in rob]
@@ -194,8 +201,7 @@ def _engine(outdir, quick):
     for a in (a1, a2):
         a.grid(alpha=0.3)
         a.legend(fontsize=7)
-    paths.append(save(fig, outdir, "shaping_engine.png"))
-    return paths
+    return save(fig, outdir, "shaping_engine.png")
 
 
 def _linear(outdir, quick=False):

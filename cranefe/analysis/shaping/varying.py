@@ -72,12 +72,18 @@ def half_periods(omega2, t0, t1, rtol=1e-10):
     return at
 
 
-def time_varying_zv(times, accel, omega2, distance, n=4000, step=0.1):
+def time_varying_zv(times, accel, omega2, distance, n=4000, step=0.1, gain=None):
     """The command a(t) (``accel`` callable, zero outside [times[0], times[-1]], the
     corners ``times`` where it jumps) shaped by eq. (2) for the free frequency
     ``omega2(t)`` = w(t)^2 of eq. (1). Returns (t, v): the shaped speed, linear between
     the points, every `step` s and at the kinks: a table for the operation engine),
     scaled so it travels ``distance``.
+
+    gain : optional callable k(t): the suspension's horizontal acceleration per unit
+        drive acceleration at time t of the shaped move (1 for a trolley, the radius for
+        slewing, the tip's horizontal lever for luffing). The swings then cancel iff
+        A1 k(tau) rho + A2 k(tau + D) = 0 (eq. 2 with the gains):
+        A1 = k2 / (k2 - rho k1), A2 = -rho k1 / (k2 - rho k1).
     """
     t0, t1 = float(times[0]), float(times[-1])
     at = half_periods(omega2, t0, t1)
@@ -85,8 +91,13 @@ def time_varying_zv(times, accel, omega2, distance, n=4000, step=0.1):
     D, rho = np.array([at(x) for x in tau]).T
     if np.any(rho >= 0):
         raise AnalysisError("time-varying shaper: no half swing found (rho >= 0)")
-    A1, A2 = 1.0 / (1.0 - rho), -rho / (1.0 - rho)
     arrive = tau + D
+    if gain is None:
+        A1, A2 = 1.0 / (1.0 - rho), -rho / (1.0 - rho)
+    else:
+        k1 = np.array([gain(x) for x in tau])
+        k2 = np.array([gain(x) for x in arrive])
+        A1, A2 = k2 / (k2 - rho * k1), -rho * k1 / (k2 - rho * k1)
     if np.any(np.diff(arrive) <= 0):
         raise AnalysisError("time-varying shaper: the delayed increments arrive out of "
                             "order (the length changes too fast for eq. 2)")
