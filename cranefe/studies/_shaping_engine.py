@@ -212,6 +212,7 @@ def varying(quick=False):
                 np.abs(next(x for x in op.drives if x.name == drive).motion.v).max())
             rows.append(row)
             for r in rows:
+                r.setdefault("peak_speed_over_command", float("nan"))
                 if r["motion"] == motion:
                     r["length_start_mean_end_hz"] = " ".join(
                         f"{freqs[k][0]:.5g}" for k in ("start", "mean", "end"))
