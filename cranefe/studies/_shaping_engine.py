@@ -91,6 +91,14 @@ def kinds(quick=False):
             ks = ("unshaped", "ZV") if quick else KINDS
             doc[motion] = compare(m, drive, kinds=ks)
             rows += [_row(motion, k, v) for k, v in doc[motion]["shapers"].items()]
+            if motion.startswith("slewing") and not quick:
+                # half the slewing speed: the centrifugal tilt r Omega^2 / g a quarter
+                slow = _scene(tmp, TOWER, {drive: MOTIONS[motion][2].replace(
+                    "v_max_deg: 4.8", "v_max_deg: 2.4")}, 40.5 + OBSERVE, "slow.yaml")
+                half = compare(slow, drive, kinds=("unshaped", "ZV"))
+                doc[motion + " at 2.4 deg/s"] = half
+                rows += [_row(motion + " at 2.4 deg/s", k, v)
+                         for k, v in half["shapers"].items()]
             if MOTIONS[motion][0] == TOWER and not quick:
                 one = compare(m, drive, kinds=("ZV",), modes=[1])["shapers"]["ZV"]
                 one["extra_time_s"] = one["move_time_s"] - \
