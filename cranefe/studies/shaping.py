@@ -11,6 +11,8 @@ move time, residual sway exact and with +/-10 % / +/-20 % rope-length error, wid
 results/shaping_energy_optimal.csv (least int a^2 swing-free moves).
 """
 
+import os
+
 import numpy as np
 
 from ._common import pyplot, save, write_csv
@@ -144,6 +146,65 @@ def energy_optimal():
 
 
 def run(outdir, quick=False):
+    paths = _linear(outdir, quick)
+    return paths + _engine(outdir, quick)
+
+
+def _engine(outdir, quick):
+    """The shapers through the operation engine (studies/_shaping_engine.py)."""
+    import json
+
+    from . import _shaping_engine as se
+    from ..outpaths import write_text
+    rows, doc = se.kinds(quick)
+    paths = [write_csv(outdir, "shaping_engine.csv", rows)]
+    path = os.path.join(outdir, "shaping_engine.json")
+    write_text(path, json.dumps(doc, indent=1) + "\n")
+    paths.append(path)
+    var = se.varying(quick)
+    keys = list(dict.fromkeys(k for r in var for k in r))
+    paths.append(write_csv(outdir, "shaping_varying.csv", var, keys))
+    rob, shapers = se.robustness(quick)
+    paths.append(write_csv(outdir, "shaping_engine_robustness.csv", rob))
+    free = se.swing_free(quick)
+    paths.append(write_csv(outdir, "shaping_swing_free.csv", free))
+    paths.append(_engine_figure(outdir, rob, shapers, var))
+    return paths
+
+
+def _engine_figure(outdir, rob, shapers, var):
+    """results/shaping_engine.png: robustness (engine vs linear V) and the residuals
+    under hoisting, from the rows of shaping_engine_robustness.csv / shaping_varying.csv."""
+    plt = pyplot()
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    e = [100 * r["length_error"] for r in rob]
+    for k, c in zip(shapers, ("C0", "C1", "C2", "C3")):
+        a1.plot(e, [r[f"{k}_load_deg"] for r in rob], "o-", color=c, label=f"{k} (engine)")
+        a1.plot(e, [r[f"{k}_linear_load_deg"] for r in rob], ":", color=c,
+                label=f"{k} (linear V)")
+    a1.set(xlabel="error in the assumed rope length [%]",
+           ylabel="residual sway of the load [deg]",
+           title=f"tower crane, trolley 15 m (unshaped {rob[0]['unshaped_load_deg']:.2f} deg)")
+    motions = list(dict.fromkeys(r["motion"] for r in var))
+    labels = list(dict.fromkeys(r["shaper"] for r in var))
+    wbar = 0.8 / len(motions)
+    for i, mo in enumerate(motions):
+        vals = {r["shaper"]: max(r["residual_hook_deg"], r["residual_load_deg"]
+                                 if r["residual_load_deg"] == r["residual_load_deg"] else 0)
+                for r in var if r["motion"] == mo}
+        a2.bar(np.arange(len(labels)) + i * wbar, [vals.get(k, np.nan) for k in labels],
+               wbar, label=mo)
+    a2.set_yscale("log")
+    a2.set_xticks(np.arange(len(labels)) + 0.4 - wbar / 2)
+    a2.set_xticklabels(labels, rotation=60, ha="right", fontsize=7)
+    a2.set(ylabel="largest residual sway [deg]", title="hoisting 20 m during the motion")
+    for a in (a1, a2):
+        a.grid(alpha=0.3)
+        a.legend(fontsize=7)
+    return save(fig, outdir, "shaping_engine.png")
+
+
+def _linear(outdir, quick=False):
     rob, err = robustness(quick), length_error(quick)
     rows, _ = cost()
     paths = [write_csv(outdir, "shaping_robustness.csv", rob),

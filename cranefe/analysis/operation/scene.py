@@ -111,7 +111,9 @@ def parse(model):
             r.fail(d.entry, f"drives the same {d.target} as drive '{seen[key]}'; give one "
                    "drive per drum or joint")
         seen[key] = d.name
-    return Operation(duration, tol, max_step, out, drives)
+    from .shaped import apply      # shaped moves (docs/shaping.md)
+    return apply(model, r, raw, Operation(duration, tol, max_step, out, drives), _motion,
+                 _check_travel)
 
 
 def _joint_by_name(model, r, name, e):
@@ -240,7 +242,7 @@ def _motion(r, p, e, angles):
     if kind not in PROFILE_KEYS:
         r.fail(f"{e}.type", f"{kind!r} is not one of {', '.join(PROFILE_KEYS)}")
     need, optional = PROFILE_KEYS[kind]
-    allowed = {"type"} | need | optional
+    allowed = {"type", "shaper"} | need | optional     # shaper: analysis/operation/shaped.py
     if angles:
         allowed |= {f"{k}_deg" for k in (need | optional) & ANGLE_KEYS}
     r.keys(p, e, allowed)
