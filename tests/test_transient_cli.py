@@ -17,7 +17,7 @@ SCENES = sorted(glob.glob(os.path.join(ROOT, "models", "scenes", "*.yaml")))
 # dynamic factor of the first rope, pinned from this version (a change means the
 # physics changed); the scenes' headers give the hand estimates
 PINNED = {
-    "hammerhead_lift_off.yaml": 1.608563,
+    "hammerhead_lift_off.yaml": 1.621667,
     "luffing_lift_off.yaml": 1.185977,
     "two_mass_hoist_motor_start.yaml": 1.169796,
     "two_mass_hoist_slack.yaml": 2.355064,
