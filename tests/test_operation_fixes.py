@@ -3,6 +3,8 @@ paid out by both ends of a drum, run-time rope reserve of torque-driven drums, t
 hinge range of a linkage luffed by a linear drive, lists of moves of linear drives,
 messages. Each test failed on the code before the fix."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -165,9 +167,13 @@ def test_linear_drive_moves_follow_the_rules_of_drums_and_joints(tmp_path, capsy
     "a_max: 0.5, start: 12}}",
     "{drum: hoist, profile: {type: table, speed: [[10, 0], [11, 1]]}}",
 ])
-def test_a_move_starting_after_the_run_is_refused(tmp_path, capsys, drive):
-    p = scene(tmp_path, OVERHEAD, f"  duration: 10\n  drives:\n    d: {drive}\n")
-    refused(p, capsys, "analysis.drives.d.profile", "after the end of the run")
+def test_a_move_starting_after_the_run_is_reported(tmp_path, drive):
+    """Not silent: a warning names the drive (not refused: a shortened working cycle
+    is a normal run)."""
+    p = scene(tmp_path, OVERHEAD, f"  duration: 0.5\n  drives:\n    d: {drive}\n")
+    res = simulate(load(p))
+    assert [w for w in res.warnings if "drive 'd' starts moving" in w and
+            "after the end of the run (0.5 s)" in w], res.warnings
 
 
 def test_range_messages_name_the_joint_and_its_range_key(tmp_path, capsys):
@@ -176,3 +182,65 @@ def test_range_messages_name_the_joint_and_its_range_key(tmp_path, capsys):
               " profile: {type: trapezoid, distance: 2, v_max: 0.5, a_max: 0.5}}\n")
     refused(p, capsys, "analysis.drives.d.profile", "'trolley_travel' (joints[0])",
             "joints[0].range)")
+
+
+# ----------------------------------------------------------------- 3. run-time reserve
+
+def test_a_torque_drum_that_pays_out_all_its_rope_stops_the_run(tmp_path, capsys):
+    """Zero torque: the load falls, unwinding the drum. Energy (rigid rope): m g x =
+    m x'^2/2 + J w^2/2 with 4 falls on 2 drum ends, 4 x = 2 R theta, so the load
+    accelerates at a = m g / (m + 4 J / R^2) and 24 m of rope (x = 6 m) are out at
+    t = sqrt(2 x / a); the rope's stretch (S/EA ~ 0.4 %) and the step that crosses the
+    limit shift it by well under 2 %. Before the fix the run went on (exit 0)."""
+    p = scene(tmp_path, OVERHEAD, "  duration: 5\n  drives:\n    hoist: {drum: hoist, "
+              "torque: 0}\n")
+    model = load(p)
+    J, R, m = model.drums[0].reduced_inertia, 0.15, 10200.0
+    a = m * 9.81 / (m + 4 * J / R**2)
+    with pytest.raises(AnalysisError) as exc:
+        simulate(model)
+    msg = str(exc.value)
+    assert "drum 'hoist'" in msg and "rope_reserve 24 m" in msg, msg
+    t = float(msg.split("at t = ")[1].split(" s")[0])
+    assert t == pytest.approx(np.sqrt(2 * 6.0 / a), rel=0.02)
+    res = exc.value.result
+    assert res.status == 1 and t - 0.01 < res.times[-1] <= t     # output_step 5 ms
+    assert main(["simulate", str(p)]) == 1
+    assert "paid out" in capsys.readouterr().err
+
+
+# ----------------------------------------------------------------- 6., 7. luffing boom
+
+LUFFING = Path(__file__).resolve().parents[1] / "models" / "operations" / \
+    "luffing_crane.yaml"
+
+
+def luffing_scene(tmp_path, drives, duration, rng="range_deg: [-40, 30]"):
+    text = LUFFING.read_text().replace("range_deg: [-40, 30]", rng)
+    return scene(tmp_path, text, f"  duration: {duration}\n  drives:\n{drives}")
+
+
+def test_a_free_boom_past_its_range_blames_the_drum_profile(tmp_path):
+    """Hauling in the luffing rope raises the free boom past range_deg [-3, 3]: the
+    message names the joint and the profile drum, not 'a drive force or torque'."""
+    p = luffing_scene(tmp_path, "    boom: {hinge: luffing, free: true}\n"
+                      "    luff: {drum: luffing, profile: {type: trapezoid, distance: 20,"
+                      " v_max: 10, a_max: 10}}\n", 4, "range_deg: [-3, 3]")
+    with pytest.raises(AnalysisError) as exc:
+        simulate(load(p))
+    msg = str(exc.value)
+    assert "'luffing' (joints[0])" in msg and "free: true" in msg and "'luff'" in msg
+    assert "a drive force or torque" not in msg
+
+
+def test_a_torque_drive_on_a_rope_held_boom_warns(tmp_path):
+    """torque: 0 on the luffing hinge: the static state holds the boom in the joint
+    (holding torque = the static moment), the luffing rope at 0 N; the run warns."""
+    p = luffing_scene(tmp_path, "    boom: {hinge: luffing, torque: 0}\n", 0.02)
+    res = simulate(load(p))
+    (w,) = [w for w in res.warnings if "drive 'boom'" in w]
+    assert "luffing_rope" in w and "carry 0 N" in w and "free: true" in w, w
+    assert "hoist_rope" not in w
+    # the boom held by a free joint: no such warning
+    p = luffing_scene(tmp_path, "    boom: {hinge: luffing, free: true}\n", 0.02)
+    assert not [w for w in simulate(load(p)).warnings if "drive 'boom'" in w]

@@ -26,6 +26,7 @@ from ...model.model import GROUND
 from ... import elements as kernels
 from .joints import joint_jacobian, pair, subtree_mass
 from .linkage import LinkageDrive
+from .scene import late_drives
 
 
 @dataclass
@@ -72,6 +73,7 @@ class Mechanism:
         if model.effects.rope_mass:
             self.warnings.append("rope_mass is not used by operation scenes yet: ropes are "
                                  "massless")
+        self.warnings += late_drives(spec)
         self._tree(model)
         self._nodes(model)
         self._joint_setup(model)
@@ -460,6 +462,11 @@ class Mechanism:
         self.rope_drum = np.array([e[0] for e in ends], dtype=int)
         self.drum_of_end = np.array([e[1] for e in ends], dtype=int)
         self.end_radius = np.array([e[2] for e in ends], dtype=float)
+        # rope paid out per drum radian, all ends of all ropes on the drum (m/rad)
+        self.drum_rate = np.zeros(nd)
+        for r in model.ropes:
+            for dd in r.end_drums:
+                self.drum_rate[dd] += model.drums[dd].radius
         self.J = np.array([model.drums[k].reduced_inertia for k in self.qdrums])
         self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
@@ -596,8 +603,21 @@ class Mechanism:
         return T, float(Vg)
 
     def check_range(self, ev, t):
-        """A joint coordinate past its range (the engine has no end stops): AnalysisError
-        naming the time (the integrator keeps the results up to it)."""
+        """A joint coordinate past its range (the engine has no end stops), or a drum
+        driven by a torque or motor that has paid out all its rope: AnalysisError naming
+        the time (the integrator keeps the results up to it)."""
+        for k in self.qdrums:
+            # rope paid out: every rope end on the drum, R theta each (unstretched())
+            payout = -float(ev.theta[k]) * self.drum_rate[k]
+            drum = self.model.drums[k]
+            if payout > drum.rope_reserve:
+                d = self.drum_drive[k]
+                raise AnalysisError(
+                    f"at t = {t:.6g} s drum '{drum.name}' (drive '{d.name}', {d.kind}) has "
+                    f"paid out {payout:.6g} m of rope, all it holds (rope_reserve "
+                    f"{drum.rope_reserve:g} m of drums.{drum.name}); likely cause: a "
+                    f"drive {'torque' if d.kind == 'torque' else 'motor'} too weak to hold "
+                    f"the load; the results up to t = {t:.6g} s are kept")
         if not self.nJ:
             return
         q = ev._ctx[4][2]
@@ -608,11 +628,22 @@ class Mechanism:
             s = q[self.nc + c] / jc["rho"]
             if s < j.range[0] - 1e-9 or s > j.range[1] + 1e-9:
                 f, u = (1.0, "m") if not jc["hinge"] else (180 / np.pi, "deg")
+                d = jc["drive"]
+                load = "force" if not jc["hinge"] else "torque"
+                drums = [f"'{x.name}'" for x in self.drum_drive
+                         if x is not None and x.kind == "profile"]
+                by = f" (drives of drums by profiles: {', '.join(drums)}: hauling in or " \
+                    "paying out the rope that holds it)" if drums else ""
+                cause = {"free": "the joint is free (free: true): the ropes and weights on "
+                                 f"it moved it there{by}",
+                         "motor": "a motor that does not stop it",
+                         }.get(d.kind, f"a drive {load} that does not stop it")
+                name = f"'{j.name}' ({j.entry})" if j.name else j.entry
                 raise AnalysisError(
-                    f"at t = {t:.6g} s {j.name or j.entry} (drive '{jc['drive'].name}') "
+                    f"at t = {t:.6g} s {name} (drive '{d.name}') "
                     f"reached {s * f:.6g} {u}, past the end of its range "
                     f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u}: the engine has no end "
-                    "stops; likely cause: a drive force or torque that does not stop it; "
+                    f"stops; likely cause: {cause}; "
                     f"the results up to t = {t:.6g} s are kept")
 
     def joint_drive_torque(self, d, t, speed):
@@ -965,6 +996,7 @@ class Mechanism:
         # what holds each joint coordinate at rest (N m or N): -(gravity + ropes)
         self.joint_hold = np.array([-(QgJ[c] - GJ[:, c] @ S0) * jc["rho"]
                                     for c, jc in enumerate(self.jc)])
+        self._warn_held_joints(model, GJ)
         self.L_ref = L
         self.lam_ref = np.exp(S0 / self.EA)
         self.L0_ref = L / self.lam_ref
@@ -974,3 +1006,36 @@ class Mechanism:
         self.hold_torque = np.zeros(self.nd)
         for j, dd, R in zip(self.rope_drum, self.drum_of_end, self.end_radius):
             self.hold_torque[dd] += R * S0[j]
+
+    def _warn_held_joints(self, model, GJ):
+        """A torque- or motor-driven joint is held at rest like a drum: its holding
+        torque carries the whole static moment, and a rope on the bodies it turns that
+        nothing else loads (a luffing rope) is at 0 N. Warn, with the holding torque and
+        the drive's torque at t = 0 (if they differ the bodies start out of equilibrium:
+        torque: 0 drops a boom onto its unloaded luffing rope)."""
+        big = max(1.0, np.abs(GJ).max(initial=0.0))
+        S0 = self.S0
+        for c, jc in enumerate(self.jc):
+            d = jc["drive"]
+            hold = float(self.joint_hold[c])
+            if d.kind not in ("torque", "motor") or hold == 0.0:
+                continue
+            ropes = [model.ropes[self.ropes[j]].name for j in range(len(S0))
+                     if abs(GJ[j, c]) > 1e-12 * big
+                     and S0[j] <= 1e-9 * max(1.0, np.abs(S0).max())]
+            if not ropes:
+                continue
+            given = float(d.torque(0.0)[0]) if d.kind == "torque" else \
+                float(d.gear_ratio * d.motor.torque(0.0)[0])
+            u = "N m" if jc["hinge"] else "N"
+            j = model.joints[jc["joint"]]
+            off = "" if abs(given - hold) <= 1e-6 * abs(hold) else \
+                f"; the drive gives {given:.6g} {u} at t = 0, so the bodies start out of " \
+                "equilibrium and fall onto the unloaded rope"
+            self.warnings.append(
+                f"drive '{d.name}' ({d.kind}) on {j.name or j.entry}: at rest the joint is "
+                f"held like a drum: its holding {'torque' if jc['hinge'] else 'force'} "
+                f"{hold:.6g} {u} carries the whole static load and rope(s) "
+                f"{', '.join(ropes)}, which also hold the bodies it moves, carry 0 N{off} "
+                "(a boom held by its luffing rope: use free: true; docs/operations.md, "
+                "'Torque, force, motor and free joints')")

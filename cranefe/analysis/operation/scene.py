@@ -144,7 +144,7 @@ def _drive(model, r, name, spec, duration):
                "luffing cylinder or rack of the model's linear_drives)")
     target = targets[0]
     if target == "linear":
-        return _linear(model, r, name, spec, e, duration)
+        return _linear(model, r, name, spec, e)
     load_key = "force" if target == "slider" else "torque"
     wrong = "torque" if target == "slider" else "force"
     if wrong in spec:
@@ -220,7 +220,7 @@ def _moves(r, raw, e, target, radius=None):
     return profiles.combine(moves)
 
 
-def _linear(model, r, name, spec, e, duration):
+def _linear(model, r, name, spec, e):
     """A linear drive (luffing cylinder, rack) whose length follows a profile (m)."""
     names = [d.name for d in model.linear_drives]
     if spec["linear"] not in names:
@@ -233,7 +233,6 @@ def _linear(model, r, name, spec, e, duration):
     motion = _moves(r, spec["profile"], f"{e}.profile", "linear")
     drive = Drive(name, "linear", names.index(spec["linear"]), "profile", motion=motion,
                   entry=e)
-    _check_start(r, drive, duration)
     return drive
 
 
@@ -386,19 +385,22 @@ def _joint_label(j):
     return f"'{j.name}' ({j.entry})" if j.name else j.entry
 
 
-def _check_start(r, d, duration):
-    """A prescribed move must start within the run (else it would silently do nothing)."""
-    moves = d.motion.moves()
-    if moves and all(a >= duration for a, _ in moves):
-        r.fail(f"{d.entry}.profile", f"the drive starts moving at t = {moves[0][0]:g} s, "
-               f"at or after the end of the run (duration {duration:g} s): it would do "
-               "nothing; start it earlier or lengthen analysis.duration")
+def late_drives(op):
+    """Warnings for prescribed drives whose every move starts at or after the end of
+    the run (a shortened cycle: they do nothing in it)."""
+    out = []
+    for d in op.drives:
+        moves = d.motion.moves() if d.motion is not None else []
+        if moves and all(a >= op.duration for a, _ in moves):
+            out.append(f"drive '{d.name}' starts moving at t = {moves[0][0]:g} s, at or "
+                       f"after the end of the run ({op.duration:g} s): it does nothing in "
+                       "this run")
+    return out
 
 
 def _check_travel(model, r, d, duration):
     """The prescribed travel stays in the slider's or hinge's range, and a drum neither
     pays out more rope than it holds nor hauls the hook block into its sheaves."""
-    _check_start(r, d, duration)
     lo, hi = d.motion.extremes(duration)
     e = f"{d.entry}.profile"
     if d.target in ("slider", "hinge"):
