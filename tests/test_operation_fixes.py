@@ -244,3 +244,26 @@ def test_a_torque_drive_on_a_rope_held_boom_warns(tmp_path):
     # the boom held by a free joint: no such warning
     p = luffing_scene(tmp_path, "    boom: {hinge: luffing, free: true}\n", 0.02)
     assert not [w for w in simulate(load(p)).warnings if "drive 'boom'" in w]
+
+
+# ----------------------------------------------------------------- 4. linkage range
+
+def test_luffing_by_a_cylinder_checks_the_hinge_range_before_integrating(tmp_path,
+                                                                        capsys):
+    """O (0, 0) and A (4, 0) on the ground, C on the boom at |OC| = 5: the cylinder's
+    length d = |AC| gives cos(beta) = (|OC|^2 + |OA|^2 - d^2) / (2 |OC| |OA|) (law of
+    cosines), beta the angle of OC. Lengthening by 1.5 m from d0 = sqrt(17) raises the
+    boom by beta - beta0 = 23.31 deg: a turn of -23.31 deg about the hinge's +y axis,
+    past range_deg [-10, 10] (accepted and run before the fix)."""
+    d = np.sqrt(17) + 1.5
+    turn = np.degrees(np.arccos((25 + 16 - d * d) / 40) - np.arctan2(4, 3))
+    drive = "  duration: 12\n  drives:\n    c: {linear: cyl, profile: {type: trapezoid, " \
+        "distance: 1.5, v_max: 0.3, a_max: 0.1}}\n"
+    p = scene(tmp_path, CYLINDER.replace("RANGE", ", range_deg: [-10, 10]"), drive)
+    refused(p, capsys, "analysis.drives.c.profile", f"[{-turn:.6g}, 0] deg",
+            "'foot' (joints[0])", "joints[0].range_deg")
+    p = scene(tmp_path, CYLINDER.replace("RANGE", ", range_deg: [-24, 10]"), drive,
+              "ok.yaml")
+    assert parse(load(p)).drives[0].target == "linear"
+    from cranefe.analysis.operation.mechanism import Mechanism
+    Mechanism(load(p), parse(load(p)))          # the check passes inside the range

@@ -93,6 +93,8 @@ class Mechanism:
         driven = {d.index: d for d in self.spec.drives if d.target in ("hinge", "slider")}
         linear = [d for d in self.spec.drives if d.target == "linear"]
         self.linear = LinkageDrive(model, linear[0], driven) if linear else None
+        if self.linear is not None:
+            self.linear.check_range(self.spec.duration)
         parent = {}
         order = []
         frontier = [GROUND]
