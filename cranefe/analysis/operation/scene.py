@@ -411,7 +411,8 @@ def _check_travel(model, r, d, duration):
             if d.target == "slider":
                 r.fail(d.entry, f"the slider {_joint_label(j)} has no range: add range: "
                        f"[min, max] (m along its axis from the model's position) to "
-                       f"{j.entry} in the model file, so the travel can be checked")
+                       f"{j.entry} in the model file ({model.file}), so the travel can "
+                       "be checked")
             return
         if lo < j.range[0] - 1e-12 or hi > j.range[1] + 1e-12:
             r.fail(e, f"the drive moves {_joint_label(j)} over [{lo * f:.6g}, {hi * f:.6g}]"
