@@ -145,7 +145,11 @@ class LinkageDrive:
             alpha -= (d - target) / d1
         else:
             raise AnalysisError(f"at t = {t:.6g} s Newton did not find the boom angle for "
-                                f"the linear drive '{self.drive.name}' length {target:.6g} m")
+                                f"the linear drive '{self.drive.name}' length {target:.6g} m:"
+                                " the stroke passes a toggle or dead point of the linkage "
+                                "(where the length stops changing with the boom angle) or "
+                                "leaves the lengths the linkage can reach; shorten the "
+                                f"stroke; the results up to t = {t:.6g} s are kept")
         ddD = ddC - ddA
         d2 = float(e @ ddD) + (float(dD @ dD) - d1 ** 2) / d
         a1 = ds / d1
@@ -178,3 +182,50 @@ class LinkageDrive:
     def angle(self, t):
         """The boom angle alpha (rad) at t (pivot -> tip above the horizontal)."""
         return self.solve(t)[0]
+
+    def check_range(self, duration):
+        """Before integrating: the hinges of the linkage with a range (range or
+        range_deg in the model) stay in it over the profile. Each hinge's turn about its
+        axis n is -(theta_child - theta_parent) n_y (theta: the poses' rotation from the
+        reference, x turning toward z; a turn about +y turns x toward -z), found by
+        following the drive's length through the run as the integrator does (times of
+        the profile's breakpoints and 400 in between: the turn is monotonic in the
+        length between dead points, whose extremes are at breakpoints or rests)."""
+        from .scene import _joint_label, _range_key
+        ranged = [k for k in sorted(self.joints) if self.model.joints[k].type == "hinge"
+                  and self.model.joints[k].range is not None]
+        if not ranged:
+            return
+        m = self.drive.motion
+        ts = np.unique(np.concatenate([np.linspace(0.0, duration, 401),
+                                       m.t[(m.t >= 0) & (m.t <= duration)]]))
+        turns = np.zeros((len(ts), len(ranged)))
+        n = len(ts)
+        try:
+            for i, t in enumerate(ts):
+                q = self.solve(float(t))[3].q[0]
+                for c, k in enumerate(ranged):
+                    j = self.model.joints[k]
+                    th = [0.0 if b == GROUND else q[3 * self.link.local[b] + 2]
+                          for b in j.bodies]
+                    turns[i, c] = -(th[1] - th[0]) * np.sign(j.axis[1])
+        except AnalysisError:           # a toggle or dead point: the run reports it
+            n = i
+        finally:
+            self._last_solution = (0.0, self.link.alpha_ref, 0.0, 0.0)
+            self._key = self._last = self._pose = None
+        file = self.model.scene_file or self.model.file
+        for c, k in enumerate(ranged):
+            if not n:
+                break
+            j = self.model.joints[k]
+            lo, hi = turns[:n, c].min(), turns[:n, c].max()
+            if lo < j.range[0] - 1e-9 or hi > j.range[1] + 1e-9:
+                f = 180 / np.pi
+                raise ModelError(
+                    f"the linear drive '{self.drive.name}' turns {_joint_label(j)} over "
+                    f"[{lo * f + 0.0:.6g}, {hi * f + 0.0:.6g}] deg within {ts[n - 1]:g} s, "
+                    f"past the end of its range [{j.range[0] * f:g}, {j.range[1] * f:g}] deg "
+                    f"({self.model.file}, {_range_key(self.model, j)}); shorten the stroke "
+                    "or extend the range", file, f"{self.drive.entry}.profile")
+

@@ -26,6 +26,7 @@ from ...model.model import GROUND
 from ... import elements as kernels
 from .joints import joint_jacobian, pair, subtree_mass
 from .linkage import LinkageDrive
+from .scene import _joint_label as _label, late_drives
 
 
 @dataclass
@@ -72,6 +73,7 @@ class Mechanism:
         if model.effects.rope_mass:
             self.warnings.append("rope_mass is not used by operation scenes yet: ropes are "
                                  "massless")
+        self.warnings += late_drives(spec)
         self._tree(model)
         self._nodes(model)
         self._joint_setup(model)
@@ -91,6 +93,8 @@ class Mechanism:
         driven = {d.index: d for d in self.spec.drives if d.target in ("hinge", "slider")}
         linear = [d for d in self.spec.drives if d.target == "linear"]
         self.linear = LinkageDrive(model, linear[0], driven) if linear else None
+        if self.linear is not None:
+            self.linear.check_range(self.spec.duration)
         parent = {}
         order = []
         frontier = [GROUND]
@@ -121,13 +125,13 @@ class Mechanism:
                 continue
             if any(b in moving for b in j.bodies if b != GROUND):
                 raise ModelError(
-                    f"{j.entry} closes a loop of bodies that the drives move; closed "
+                    f"{_label(j)} closes a loop of bodies that the drives move; closed "
                     "linkages are not solved by operation scenes yet (drive a joint "
                     "outside the loop)", model.scene_file or model.file,
                     driven[next(iter(driven))].entry if driven else None)
         for k, d in driven.items():
             if k not in used:
-                raise ModelError(f"{model.joints[k].entry} closes a loop of bodies: "
+                raise ModelError(f"{_label(model.joints[k])} closes a loop of bodies: "
                                  "driving it is not supported", model.scene_file, d.entry)
         free_bodies = [model.bodies[b].name for b in range(nb) if b not in parent]
         self.free_bodies = free_bodies
@@ -143,7 +147,7 @@ class Mechanism:
                 pa, ka = parent[a]
                 if ka in driven and driven[ka].coordinate:
                     raise ModelError(
-                        f"drive '{driven[k].name}' moves {model.joints[k].entry} on the "
+                        f"drive '{driven[k].name}' moves {_label(model.joints[k])} on the "
                         f"bodies that drive '{driven[ka].name}' carries as a coordinate; "
                         "a torque, force, motor or free joint with a moving joint below "
                         "it is not solved yet (prescribe the outer joint's motion with a "
@@ -302,7 +306,7 @@ class Mechanism:
             else:
                 rho = 1.0
             if m <= 0:
-                raise ModelError(f"drive '{d.name}' moves {j.entry} as a coordinate, but "
+                raise ModelError(f"drive '{d.name}' moves {_label(j)} as a coordinate, but "
                                  "the bodies it carries have no mass; give them mass "
                                  "(bodies.NAME.mass) or prescribe a profile",
                                  model.scene_file or model.file, d.entry)
@@ -460,6 +464,11 @@ class Mechanism:
         self.rope_drum = np.array([e[0] for e in ends], dtype=int)
         self.drum_of_end = np.array([e[1] for e in ends], dtype=int)
         self.end_radius = np.array([e[2] for e in ends], dtype=float)
+        # rope paid out per drum radian, all ends of all ropes on the drum (m/rad)
+        self.drum_rate = np.zeros(nd)
+        for r in model.ropes:
+            for dd in r.end_drums:
+                self.drum_rate[dd] += model.drums[dd].radius
         self.J = np.array([model.drums[k].reduced_inertia for k in self.qdrums])
         self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
@@ -596,8 +605,21 @@ class Mechanism:
         return T, float(Vg)
 
     def check_range(self, ev, t):
-        """A joint coordinate past its range (the engine has no end stops): AnalysisError
-        naming the time (the integrator keeps the results up to it)."""
+        """A joint coordinate past its range (the engine has no end stops), or a drum
+        driven by a torque or motor that has paid out all its rope: AnalysisError naming
+        the time (the integrator keeps the results up to it)."""
+        for k in self.qdrums:
+            # rope paid out: every rope end on the drum, R theta each (unstretched())
+            payout = -float(ev.theta[k]) * self.drum_rate[k]
+            drum = self.model.drums[k]
+            if payout > drum.rope_reserve:
+                d = self.drum_drive[k]
+                raise AnalysisError(
+                    f"at t = {t:.6g} s drum '{drum.name}' (drive '{d.name}', {d.kind}) has "
+                    f"paid out {payout:.6g} m of rope, all it holds (rope_reserve "
+                    f"{drum.rope_reserve:g} m of drums.{drum.name}); likely cause: a "
+                    f"drive {'torque' if d.kind == 'torque' else 'motor'} too weak to hold "
+                    f"the load; the results up to t = {t:.6g} s are kept")
         if not self.nJ:
             return
         q = ev._ctx[4][2]
@@ -608,11 +630,22 @@ class Mechanism:
             s = q[self.nc + c] / jc["rho"]
             if s < j.range[0] - 1e-9 or s > j.range[1] + 1e-9:
                 f, u = (1.0, "m") if not jc["hinge"] else (180 / np.pi, "deg")
+                d = jc["drive"]
+                load = "force" if not jc["hinge"] else "torque"
+                drums = [f"'{x.name}'" for x in self.drum_drive
+                         if x is not None and x.kind == "profile"]
+                by = f" (drives of drums by profiles: {', '.join(drums)}: hauling in or " \
+                    "paying out the rope that holds it)" if drums else ""
+                cause = {"free": "the joint is free (free: true): the ropes and weights on "
+                                 f"it moved it there{by}",
+                         "motor": "a motor that does not stop it",
+                         }.get(d.kind, f"a drive {load} that does not stop it")
+                name = _label(j)
                 raise AnalysisError(
-                    f"at t = {t:.6g} s {j.name or j.entry} (drive '{jc['drive'].name}') "
+                    f"at t = {t:.6g} s {name} (drive '{d.name}') "
                     f"reached {s * f:.6g} {u}, past the end of its range "
                     f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u}: the engine has no end "
-                    "stops; likely cause: a drive force or torque that does not stop it; "
+                    f"stops; likely cause: {cause}; "
                     f"the results up to t = {t:.6g} s are kept")
 
     def joint_drive_torque(self, d, t, speed):
@@ -942,7 +975,7 @@ class Mechanism:
         if weight > 0 and np.abs(resid).max() > 1e-8 * weight and worst >= self.nc:
             jc = self.jc[free_j[worst - self.nc]]
             raise ModelError(f"the model's geometry is not a static equilibrium: the ropes "
-                             f"cannot hold {model.joints[jc['joint']].entry} (free in "
+                             f"cannot hold {_label(model.joints[jc['joint']])} (free in "
                              f"drive '{jc['drive'].name}') there (unbalanced "
                              f"{abs(resid[worst]) * jc['rho']:.4g} N m or N); reeve a rope "
                              "that holds it, or drive it by a torque", file,
@@ -965,6 +998,7 @@ class Mechanism:
         # what holds each joint coordinate at rest (N m or N): -(gravity + ropes)
         self.joint_hold = np.array([-(QgJ[c] - GJ[:, c] @ S0) * jc["rho"]
                                     for c, jc in enumerate(self.jc)])
+        self._warn_held_joints(model, GJ)
         self.L_ref = L
         self.lam_ref = np.exp(S0 / self.EA)
         self.L0_ref = L / self.lam_ref
@@ -974,3 +1008,36 @@ class Mechanism:
         self.hold_torque = np.zeros(self.nd)
         for j, dd, R in zip(self.rope_drum, self.drum_of_end, self.end_radius):
             self.hold_torque[dd] += R * S0[j]
+
+    def _warn_held_joints(self, model, GJ):
+        """A torque- or motor-driven joint is held at rest like a drum: its holding
+        torque carries the whole static moment, and a rope on the bodies it turns that
+        nothing else loads (a luffing rope) is at 0 N. Warn, with the holding torque and
+        the drive's torque at t = 0 (if they differ the bodies start out of equilibrium:
+        torque: 0 drops a boom onto its unloaded luffing rope)."""
+        big = max(1.0, np.abs(GJ).max(initial=0.0))
+        S0 = self.S0
+        for c, jc in enumerate(self.jc):
+            d = jc["drive"]
+            hold = float(self.joint_hold[c])
+            if d.kind not in ("torque", "motor") or hold == 0.0:
+                continue
+            ropes = [model.ropes[self.ropes[j]].name for j in range(len(S0))
+                     if abs(GJ[j, c]) > 1e-12 * big
+                     and S0[j] <= 1e-9 * max(1.0, np.abs(S0).max())]
+            if not ropes:
+                continue
+            given = float(d.torque(0.0)[0]) if d.kind == "torque" else \
+                float(d.gear_ratio * d.motor.torque(0.0)[0])
+            u = "N m" if jc["hinge"] else "N"
+            j = model.joints[jc["joint"]]
+            off = "" if abs(given - hold) <= 1e-6 * abs(hold) else \
+                f"; the drive gives {given:.6g} {u} at t = 0, so the bodies start out of " \
+                "equilibrium and fall onto the unloaded rope"
+            self.warnings.append(
+                f"drive '{d.name}' ({d.kind}) on {_label(j)}: at rest the joint is "
+                f"held like a drum: its holding {'torque' if jc['hinge'] else 'force'} "
+                f"{hold:.6g} {u} carries the whole static load and rope(s) "
+                f"{', '.join(ropes)}, which also hold the bodies it moves, carry 0 N{off} "
+                "(a boom held by its luffing rope: use free: true; docs/operations.md, "
+                "'Torque, force, motor and free joints')")

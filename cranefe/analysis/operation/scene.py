@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...errors import ModelError
+from ...model import units
 from ...model.load import _Reader
 from ..transient.scene import Motor, Profile, _motor, _profile
 from . import profiles
@@ -194,26 +196,30 @@ def _drive(model, r, name, spec, duration):
         return Drive(name, target, index, "motor",
                      motor=_motor(r, spec["motor"], f"{e}.motor"), entry=e,
                      gear_ratio=gear, rotor_inertia=rotor)
-    raw = spec["profile"]
-    if isinstance(raw, list):
-        if not raw:
-            r.fail(f"{e}.profile", "an empty list of moves; give one or more profiles")
-        moves = [_motion(r, p, f"{e}.profile[{k}]", target == "hinge")
-                 for k, p in enumerate(raw)]
-        for k, mv in enumerate(moves):
-            if mv.kind == "table":
-                r.fail(f"{e}.profile[{k}]", "a speed table gives the whole history; list "
-                       "only trapezoid and s_curve moves, or give one table")
-        for k in range(1, len(moves)):
-            if moves[k].t[0] < moves[k - 1].t[-1] - 1e-12:
-                r.fail(f"{e}.profile[{k}].start", f"starts at {moves[k].t[0]:g} s, before "
-                       f"the previous move ends ({moves[k - 1].t[-1]:.6g} s)")
-        motion = profiles.combine(moves)
-    else:
-        motion = _motion(r, raw, f"{e}.profile", target == "hinge")
+    radius = model.drums[index].radius if target == "drum" else None
+    motion = _moves(r, spec["profile"], f"{e}.profile", target, radius)
     drive = Drive(name, target, index, "profile", motion=motion, entry=e)
     _check_travel(model, r, drive, duration)
     return drive
+
+
+def _moves(r, raw, e, target, radius=None):
+    """The motion of a prescribed drive: one profile, or a list of trapezoid and s_curve
+    moves one after the other (each starting when the previous one has ended)."""
+    if not isinstance(raw, list):
+        return _motion(r, raw, e, target, radius)
+    if not raw:
+        r.fail(e, "an empty list of moves; give one or more profiles")
+    moves = [_motion(r, p, f"{e}[{k}]", target, radius) for k, p in enumerate(raw)]
+    for k, mv in enumerate(moves):
+        if mv.kind == "table" and len(moves) > 1:
+            r.fail(f"{e}[{k}]", "a speed table gives the whole history; list only "
+                   "trapezoid and s_curve moves, or give one table")
+    for k in range(1, len(moves)):
+        if moves[k].t[0] < moves[k - 1].t[-1] - 1e-12:
+            r.fail(f"{e}[{k}].start", f"starts at {moves[k].t[0]:g} s, before the "
+                   f"previous move ends ({moves[k - 1].t[-1]:.6g} s); start it later")
+    return profiles.combine(moves)
 
 
 def _linear(model, r, name, spec, e):
@@ -226,18 +232,78 @@ def _linear(model, r, name, spec, e):
     if extra or "profile" not in spec:
         r.fail(f"{e}.{sorted(extra)[0]}" if extra else e, "a linear drive follows a "
                "profile of its length change (m): give profile: {...} only")
-    raw = spec["profile"]
-    motion = profiles.combine([_motion(r, p, f"{e}.profile[{k}]", False)
-                               for k, p in enumerate(raw)]) if isinstance(raw, list) \
-        else _motion(r, raw, f"{e}.profile", False)
-    return Drive(name, "linear", names.index(spec["linear"]), "profile", motion=motion,
-                 entry=e)
+    motion = _moves(r, spec["profile"], f"{e}.profile", "linear")
+    drive = Drive(name, "linear", names.index(spec["linear"]), "profile", motion=motion,
+                  entry=e)
+    return drive
 
 
-def _motion(r, p, e, angles):
+# the SI unit of each profile key by the order of its derivative, for targets moved in
+# metres (slider, linear drive) or radians (hinge, drum); a drum also takes rope units,
+# turned into drum angles by its radius (docs/operations.md, "Units of profile numbers")
+ORDER = {"distance": 0, "v_max": 1, "speed": 1, "a_max": 2, "j_max": 3}
+LINEAR_UNITS = ("m", "m/s", "m/s^2", "m/s^3")
+ANGLE_UNITS = ("rad", "rad/s", "rad/s^2", "rad/s^3")
+_WHAT = {("m", 0): "a length", ("m", 1): "a speed", ("m", 2): "an acceleration",
+         ("m", 3): "a jerk", ("rad", 0): "an angle", ("rad", 1): "an angular speed",
+         ("rad", 2): "an angular acceleration", ("rad", 3): "an angular jerk",
+         ("s", 0): "a time"}
+
+
+def _value(r, v, e, key, target, radius=None, scale=1.0, **kw):
+    """One profile number at entry `e`: a plain number (SI, times `scale` for the _deg
+    keys) or a quantity of the dimension the target needs (a slider's distance a length,
+    a hinge's an angle, a drum's an angle or a rope length by its radius, ...); a
+    quantity of another dimension is a ModelError naming both."""
+    if not (isinstance(v, str) and units.has_unit(v)):
+        return r.number(v, e, **kw) * scale
+    order = ORDER[key]
+    metres = target in ("slider", "linear")
+    want = (LINEAR_UNITS if metres else ANGLE_UNITS)[order]
+    x = first = None
+    try:
+        x = units.convert(v, e, r.file, unit=want)
+    except ModelError as exc:
+        first = exc
+    if x is None and radius is not None:    # a drum: rope length (rate) over the radius
+        try:
+            x = units.convert(v, e, r.file, unit=LINEAR_UNITS[order]) / radius
+        except ModelError:
+            pass
+    if x is not None:
+        return r.number(x, e, **kw)
+    found = None
+    for u, k in [(LINEAR_UNITS[k], k) for k in range(4)] + \
+            [(ANGLE_UNITS[k], k) for k in range(4)] + [("s", 0)]:
+        try:
+            units.convert(v, e, r.file, unit=u)
+        except ModelError:
+            continue
+        found = _WHAT[(u.split("/")[0] if "/" in u else u, k)]
+        break
+    for u, name in () if found else units._NAMES:     # what else it is, for the message
+        try:
+            units.convert(v, e, r.file, unit=u)
+        except ModelError:
+            continue
+        found = name
+        break
+    if found is None:
+        raise first
+    need = _WHAT[("m" if metres else "rad", order)]
+    also = f" or a rope {_WHAT[('m', order)].split(' ', 1)[1]} ({LINEAR_UNITS[order]}, " \
+        "turned into the drum's by its radius)" if radius is not None else ""
+    r.fail(e, f"{v.strip()} is {found}, but {key} of a {target} drive is {need} "
+           f"({want}){also}; give it in such a unit (docs/operations.md)")
+
+
+def _motion(r, p, e, target, radius=None):
+    """One move of a prescribed drive (metres for a slider or linear drive, radians for
+    a hinge or drum); every number may carry a unit of the target's dimension."""
     if not isinstance(p, dict):
         r.fail(e, "must be a mapping such as {type: trapezoid, distance: 15, v_max: 0.5, "
                "a_max: 0.25}")
+    angles = target == "hinge"
     kind = p.get("type")
     if kind not in PROFILE_KEYS:
         r.fail(f"{e}.type", f"{kind!r} is not one of {', '.join(PROFILE_KEYS)}")
@@ -261,16 +327,25 @@ def _motion(r, p, e, angles):
         scale = np.pi / 180 if key.endswith("_deg") else 1.0
         if k == "speed":
             rows = r.listing(p[key], f"{e}.{key}", min_len=1)
-            table = np.array([r.vector(x, f"{e}.{key}[{i}]", 2) for i, x in enumerate(rows)])
+            table = []
+            for i, x in enumerate(rows):
+                ei = f"{e}.{key}[{i}]"
+                if not isinstance(x, (list, tuple)) or len(x) != 2:
+                    r.fail(ei, f"must be a row [time, speed], not {x!r}")
+                table.append((r.number(x[0], f"{ei}[0]", unit="s"),
+                              _value(r, x[1], f"{ei}[1]", "speed", target, radius, scale)))
+            table = np.array(table)
             if np.any(np.diff(table[:, 0]) <= 0):
                 r.fail(f"{e}.{key}", "the times (first column) must increase from row to row")
             if table[0, 0] < 0:
                 r.fail(f"{e}.{key}[0]", "times start at t >= 0")
-            v[k] = table * [1.0, scale]
+            v[k] = table
+        elif k in ("start", "ramp"):
+            v[k] = r.number(p[key], f"{e}.{key}", unit="s", positive=k == "ramp",
+                            nonneg=k == "start")
         else:
-            v[k] = r.number(p[key], f"{e}.{key}", positive=k in ("v_max", "a_max", "j_max",
-                                                                 "ramp"),
-                            nonneg=k == "start") * (1.0 if k in ("start", "ramp") else scale)
+            v[k] = _value(r, p[key], f"{e}.{key}", k, target, radius, scale,
+                          positive=k != "distance")
     if kind == "trapezoid":
         if ("a_max" in v) == ("ramp" in v):
             r.fail(e, "give the acceleration a_max or the ramp time ramp (s), one of them")
@@ -280,6 +355,49 @@ def _motion(r, p, e, angles):
         return profiles.s_curve(v["distance"], v["v_max"], v["a_max"], v["j_max"],
                                 v.get("start", 0.0))
     return profiles.speed_table(v["speed"][:, 0], v["speed"][:, 1])
+
+
+def _rope_rate(model, drum_index):
+    """Rope paid out per drum radian (m/rad) for each rope on the drum: the radius once
+    per rope end wound on it (a rope with both ends on the drum counts twice), as in
+    Mechanism's L0 = L0_ref - sum over ends R theta / lambda_ref. {rope index: m/rad}."""
+    R = model.drums[drum_index].radius
+    return {k: R * rope.end_drums.count(drum_index) for k, rope in enumerate(model.ropes)
+            if drum_index in rope.end_drums}
+
+
+def _range_key(model, j):
+    """Where the joint's range is written in the model file: range or range_deg (read
+    back from the file: only called for a message)."""
+    if j.type == "hinge":
+        try:
+            import yaml
+            with open(model.file, encoding="utf-8") as fh:
+                joints = yaml.safe_load(fh).get("joints")
+            k = int(j.entry.split("[")[1].rstrip("]"))
+            if "range_deg" in joints[k]:
+                return f"{j.entry}.range_deg"
+        except Exception:          # noqa: BLE001 - a message detail only
+            return f"{j.entry}.range or range_deg"
+    return f"{j.entry}.range"
+
+
+def _joint_label(j):
+    """A joint in messages: its name and entry (``luffing (joints[0])``)."""
+    return f"'{j.name}' ({j.entry})" if j.name else j.entry
+
+
+def late_drives(op):
+    """Warnings for prescribed drives whose every move starts at or after the end of
+    the run (a shortened cycle: they do nothing in it)."""
+    out = []
+    for d in op.drives:
+        moves = d.motion.moves() if d.motion is not None else []
+        if moves and all(a >= op.duration for a, _ in moves):
+            out.append(f"drive '{d.name}' starts moving at t = {moves[0][0]:g} s, at or "
+                       f"after the end of the run ({op.duration:g} s): it does nothing in "
+                       "this run")
+    return out
 
 
 def _check_travel(model, r, d, duration):
@@ -293,34 +411,39 @@ def _check_travel(model, r, d, duration):
         f = 1.0 if d.target == "slider" else 180 / np.pi
         if j.range is None:
             if d.target == "slider":
-                r.fail(d.entry, f"the slider {j.name or j.entry} has no range: add range: "
+                r.fail(d.entry, f"the slider {_joint_label(j)} has no range: add range: "
                        f"[min, max] (m along its axis from the model's position) to "
-                       f"{j.entry} in the model file, so the travel can be checked")
+                       f"{j.entry} in the model file ({model.file}), so the travel can "
+                       "be checked")
             return
         if lo < j.range[0] - 1e-12 or hi > j.range[1] + 1e-12:
-            r.fail(e, f"the drive moves {j.name or j.entry} over [{lo * f:.6g}, {hi * f:.6g}]"
+            r.fail(e, f"the drive moves {_joint_label(j)} over [{lo * f:.6g}, {hi * f:.6g}]"
                    f" {u} within {duration:g} s, past the end of its range "
                    f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u} ({model.file}, "
-                   f"{j.entry}.range); shorten the move or extend the range")
+                   f"{_range_key(model, j)}); shorten the move or extend the range")
         return
     drum = model.drums[d.index]
-    payout = -lo * drum.radius
+    rates = _rope_rate(model, d.index)
+    rate = sum(rates.values()) or drum.radius
+    ends = round(rate / drum.radius)
+    how = f"radius {drum.radius:g} m x {ends} rope end{'s' if ends > 1 else ''} x"
+    payout = -lo * rate
     if payout > drum.rope_reserve:
-        r.fail(e, f"the drum pays out {payout:.6g} m of rope (radius {drum.radius:g} m x "
-               f"{-lo:.6g} rad), more than it holds (rope_reserve {drum.rope_reserve:g} m "
-               f"of drums.{drum.name}); haul in, shorten the move or add rope_reserve")
-    haul = hi * drum.radius
+        r.fail(e, f"the drum pays out {payout:.6g} m of rope ({how} {-lo:.6g} rad), more "
+               f"than it holds (rope_reserve {drum.rope_reserve:g} m of drums.{drum.name});"
+               " haul in, shorten the move or add rope_reserve")
     on_body = {i for b in model.bodies for i in b.nodes} | set(model.ground.tolist())
     free = {int(i) for i in model.masses.nodes} - on_body
-    for rope in model.ropes:
-        if d.index not in rope.end_drums:
-            continue
+    for k, rate in rates.items():
+        rope = model.ropes[k]
+        haul = hi * rate
         xs = model.coords
         hanging = [(a, b, f) for a, b, f in zip(rope.span_a, rope.span_b, rope.falls)
                    if a in free or b in free]
         room = sum(f * np.linalg.norm(xs[b] - xs[a]) for a, b, f in hanging)
+        n = rope.end_drums.count(d.index)
         if hanging and haul >= room:
             r.fail(e, f"the drum hauls in {haul:.6g} m of rope (radius {drum.radius:g} m x "
-                   f"{hi:.6g} rad) but rope '{rope.name}' has only {room:.6g} m in the "
-                   "falls above its load: the hook block would be pulled into its "
-                   "sheaves; shorten the move")
+                   f"{n} rope end{'s' if n > 1 else ''} x {hi:.6g} rad) but rope "
+                   f"'{rope.name}' has only {room:.6g} m in the falls above its load: the "
+                   "hook block would be pulled into its sheaves; shorten the move")
