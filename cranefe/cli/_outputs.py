@@ -36,7 +36,7 @@ def add_member_force_arguments(p, modes=False):
     """--member-forces (and for modes --member-forces-scale): section forces and stresses
     at the members' ends in --json (docs/structure.md, "Member forces")."""
     p.add_argument("--member-forces", action="store_true", help="add the members' end "
-                   "forces and extreme-fibre stresses to --json" + (
+                   "forces and extreme-fibre stresses to --json and --archive" + (
                        " (per mode)" if modes else " (envelope over the output times)"))
     if modes:
         def amplitude(text):

@@ -42,13 +42,14 @@ def run(args):
         modal, shown = partner_modes(model, system, len(result.omega))
         results["damping"] = damping(model, model.effects.damping, shown, system=system,
                                      modal=modal)
-    member_forces = None        # not in `results`: the archive has no place for it yet
+    member_forces = None
     if getattr(args, "member_forces", False):
         from ..outputs.member_forces import modal_member_forces
         mm = system.dofs.members
         if mm is not None and len(mm.member):
             member_forces = modal_member_forces(model, system.dofs, result.shapes,
                                                 result.node_shapes, args.member_forces_scale)
+            results["member_forces"] = member_forces        # the archive's group
     if args.json:
         doc = modes_document(result, comparison)
         if member_forces is not None:

@@ -1,0 +1,114 @@
+"""Member forces in the archive, in `cranefe show`, in the pictures' colours, and
+members given in mesh files with supports, releases and profile sections (issue 19)."""
+
+import json
+import math
+import textwrap
+
+import numpy as np
+import pytest
+
+from cranefe.cli import main
+from cranefe.outputs import archive
+
+E, G = 2.1e11, 8.1e10
+B, H = 0.1, 0.2                      # rectangle: Iy = B H^3 / 12 (strong), Wy = B H^2 / 6
+
+
+def _write(tmp_path, text, name="m.yaml"):
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text))
+    return str(path)
+
+
+def _cantilever(L=4.0, m=1000.0, rho=0.0, elements=4):
+    """A 3D cantilever along x (rectangle B x H, depth along z), a point mass at T."""
+    return f"""
+    cranefe: 1
+    nodes: {{O: [0, 0, 0], T: [{L}, 0, 0]}}
+    ground: [O]
+    members:
+      b: {{type: beam, nodes: [O, T], E: {E}, G: {G}, rho: {rho}, orientation: [0, 0, 1],
+          elements: {elements}, section: {{shape: rectangle, b: {B}, h: {H}}}}}
+    masses: {{T: {m}}}
+    effects: {{structure: flexible}}
+    """
+
+
+def test_modes_archive_keeps_the_member_forces_of_json(tmp_path, capsys):
+    """`modes --member-forces --archive`: the group read back holds the same numbers as
+    --json (the JSON's piece ends are elements 0 and 3 of the four), and `show` prints
+    each member's largest |sigma| over the modes."""
+    model = _write(tmp_path, _cantilever(rho=7850.0))
+    out = tmp_path / "m.h5"
+    assert main(["modes", model, "--count", "4", "--json", "--member-forces",
+                 "--member-forces-scale", "0.01", "--archive", str(out)]) == 0
+    doc = json.loads(capsys.readouterr().out)["member_forces"]
+    mf = archive.read(out).results["member_forces"]
+    assert mf.kind == "modes" and mf.scale == doc["scale"] == {
+        "normalisation": "largest node translation", "amplitude_m": 0.01}
+    assert mf.forces.shape == (4, 4, 2, 6) and mf.element_member == ("b",) * 4
+    assert mf.pieces == [("b", "beam", "O", "T", 0, 3)]
+    names = ("N", "Vy", "Vz", "T", "My", "Mz")
+    for k, mode in enumerate(doc["modes"]):
+        (p,) = mode["pieces"]
+        # the JSON is written from these very arrays: equal to the last bit
+        assert [p["start"][n] for n in names] == mf.forces[k, 0, 0].tolist()
+        assert [p["end"][n] for n in names] == mf.forces[k, 3, 1].tolist()
+        assert p["start"]["sigma_max"] == mf.stress[k, 0, 0, 0]
+    peak = np.nanmax(np.abs(mf.stress))
+    assert main(["show", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "results/member_forces (MemberForces):" in text
+    assert f"{peak / 1e6:.6g}" in text
+    assert main(["show", str(out), "--json"]) == 0
+    shown = json.loads(capsys.readouterr().out)["documents"]["member_forces"]
+    (row,) = shown["peak_stress"]
+    assert row["member"] == "b" and row["sigma_abs_max_Pa"] == peak
+    # at 0.01 m tip amplitude the first bending mode's root stress is of the order of
+    # 3 E I y / L^3 * L * c / I = 3 E c y / L^2 (a static tip load's shape): the peak over
+    # four modes is larger than that (higher modes bend more for the same amplitude)
+    assert peak > 3 * E * (H / 2) * 0.01 / 4.0**2
+
+
+def test_simulate_archive_keeps_the_envelope(tmp_path, capsys):
+    """A step force F at the tip mass of a massless cantilever (as in
+    tests/test_member_forces.py): the archived envelope's clamp moment runs from m g L
+    to (m g + 2 F) L, within the output-time sampling's 1e-4."""
+    L, m, g, F = 4.0, 1000.0, 9.81, 5000.0
+    I = B * H**3 / 12
+    T = 2 * math.pi * math.sqrt(m / (3 * E * I / L**3))
+    _write(tmp_path, _cantilever(L, m), "cant.yaml")
+    scene = _write(tmp_path, f"""
+    cranefe: 1
+    scene: step load at the tip
+    model: cant.yaml
+    analysis:
+      type: transient
+      duration: {1.5 * T}
+      time_step: {T / 360}
+      forces:
+        T: {{force: [0, 0, {-F}]}}
+    """, "scene.yaml")
+    out = tmp_path / "t.h5"
+    assert main(["simulate", scene, "--json", "--member-forces", "--archive",
+                 str(out)]) == 0
+    doc = json.loads(capsys.readouterr().out)["member_forces"]
+    arc = archive.read(out)
+    assert set(arc.results) == {"transient", "member_forces"}
+    mf = arc.results["member_forces"]
+    assert mf.kind == "envelope" and mf.forces.shape == (2, 4, 2, 6)
+    lo, hi = mf.forces[0, 0, 0, 4], mf.forces[1, 0, 0, 4]
+    assert lo == doc["pieces"][0]["start"]["min"]["My"]
+    assert lo == pytest.approx(m * g * L, rel=1e-6)
+    assert hi == pytest.approx((m * g + 2 * F) * L, rel=1e-4)
+    assert mf.stress[1, 0, 0, 0] == pytest.approx((m * g + 2 * F) * L * (H / 2) / I,
+                                                  rel=1e-4)
+    import h5py
+    with h5py.File(out, "r") as h:
+        d = h["results/member_forces"]
+        assert d["bending_moment"].attrs["units"] == "N m"
+        assert d["bending_moment"][1, 0, 0, 0] == hi
+        assert d["extreme_fibre_stress"].attrs["units"] == "Pa"
+        assert list(d["section_forces"].attrs["components"]) == \
+            ["N", "Vy", "Vz", "T", "My", "Mz"]
