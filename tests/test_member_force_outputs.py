@@ -175,3 +175,61 @@ def test_color_stress_needs_images_and_members(tmp_path, capsys):
     assert main(["modes", hoist, "--color", "stress", "--images",
                  str(tmp_path / "img")]) == 2
     assert "has none" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------------ mesh files
+
+FRAME_NODES = {"A": [0, 0, 0], "B": [0, 0, 3], "C": [4, 0, 3], "D": [4, 0, 0]}
+GIRDER_POINTS = [[0, 0, 3], [4 / 3, 0, 3.2], [8 / 3, 0, 3.2], [4, 0, 3]]
+COLUMN_POINTS = [[0, 0, 0], [0, 0, 3], [4, 0, 0], [4, 0, 3]]
+
+
+def _frame(girder, columns, extra_nodes="", support="girder.1"):
+    """A 3D portal frame A-B-C-D with a bent girder B-G1-G2-C (IPE 200, released about
+    its strong axis at C) on box columns (Timoshenko from the shape), pinned at D,
+    clamped at A, the girder's first interior point held sideways (uy)."""
+    return f"""
+    cranefe: 1
+    nodes: {{A: [0, 0, 0], B: [0, 0, 3], C: [4, 0, 3], D: [4, 0, 0]{extra_nodes}}}
+    ground: [A]
+    supports: {{D: pinned, {support}: [uy]}}
+    members:
+      girder: {{type: beam, {girder}, E: {E}, G: {G}, rho: 7850,
+               orientation: [0, 1, 0], elements: 2, section: {{profile: IPE 200}},
+               releases: {{C: [ry]}}}}
+      columns: {{type: beam, {columns}, E: {E}, G: {G}, rho: 7850,
+                orientation: [0, 1, 0], elements: 3,
+                section: {{shape: box, b: 0.2, h: 0.2, t: 0.01, timoshenko: true}}}}
+    masses: {{C: 200}}
+    effects: {{structure: flexible}}
+    """
+
+
+def test_mesh_file_members_carry_supports_releases_and_sections(tmp_path):
+    """The frame with its girder and columns read from VTU files (points merged with
+    the named nodes, new points named girder.1, girder.2) has the frequencies of its
+    YAML twin (the same members as chains and pairs of named nodes) to 1e-12: the
+    support on a mesh point, the release at C, the profile and the shape section all
+    reach the members. Without them the frequencies differ (the test can fail)."""
+    import meshio
+    from cranefe.api import load, modes
+    meshio.write_points_cells(str(tmp_path / "girder.vtu"), np.array(GIRDER_POINTS, float),
+                              [("line", np.array([[0, 1], [1, 2], [2, 3]]))])
+    meshio.write_points_cells(str(tmp_path / "columns.vtu"), np.array(COLUMN_POINTS, float),
+                              [("line", np.array([[0, 1], [2, 3]]))])
+    meshed = load(_write(tmp_path, _frame("mesh: girder.vtu", "mesh: columns.vtu"),
+                         "meshed.yaml"))
+    assert {"girder.1", "girder.2"} <= set(meshed.node_names)
+    twin = load(_write(tmp_path, _frame(
+        "nodes: [B, G1, G2, C]", "pairs: [[A, B], [D, C]]",
+        ", G1: [1.3333333333333333, 0, 3.2], G2: [2.6666666666666665, 0, 3.2]",
+        support="G1"), "twin.yaml"))
+    f_mesh, f_twin = (modes(m, count=8).frequency_hz for m in (meshed, twin))
+    assert np.abs(f_mesh / f_twin - 1).max() < 1e-12
+    # the same frame without the release, or the support, differs
+    for change in (lambda t: t.replace("releases: {C: [ry]}", ""),
+                   lambda t: t.replace(", girder.1: [uy]", "")):
+        other = load(_write(tmp_path, change(_frame("mesh: girder.vtu",
+                                                    "mesh: columns.vtu")), "other.yaml"))
+        f = modes(other, count=8).frequency_hz
+        assert np.abs(f / f_twin - 1).max() > 1e-3
