@@ -49,11 +49,38 @@ def written(tmp_path_factory):
     out["luffing"] = (luff, None, api.luff(luff, sensitivity=False))
     op = api.load(operation_scene(str(d)))
     out["operation"] = (op, None, api.simulate(op))
+    out["member_forces"] = member_force_modes(str(d))
     paths = {}
     for group, (m, s, r) in out.items():
         paths[group] = (archive.write(d / f"{group}.h5", m, s, {group: r},
-                                      command=["test"], timings=r.timings), r)
+                                      command=["test"], timings=getattr(r, "timings", {})),
+                        r)
     return paths
+
+
+def member_force_modes(folder):
+    """(model, system, MemberForces) of the first three modes of a 3D cantilever of two
+    members, one of them without section moduli (nan stresses), scaled to 0.01 m."""
+    from cranefe.outputs.member_forces import modal_member_forces
+    from cranefe.system import assemble
+    path = os.path.join(folder, "cantilever.yaml")
+    with open(path, "w") as fh:
+        fh.write("""cranefe: 1
+nodes: {O: [0, 0, 0], A: [2, 0, 0], T: [4, 0, 0]}
+ground: [O]
+members:
+  root: {type: beam, nodes: [O, A], E: 2.1e11, G: 8.1e10, rho: 7850, elements: 2,
+         orientation: [0, 0, 1], section: {shape: rectangle, b: 0.1, h: 0.2}}
+  tip: {type: beam, nodes: [A, T], E: 2.1e11, G: 8.1e10, rho: 7850, A: 0.02, Iy: 6.7e-5,
+        Iz: 1.7e-5, J: 4.6e-5, orientation: [0, 0, 1]}
+masses: {T: 100}
+effects: {structure: flexible}
+""")
+    model = api.load(path)
+    system = assemble(model)
+    r = api.modes(model, count=3)
+    return model, system, modal_member_forces(model, system.dofs, r.shapes, r.node_shapes,
+                                              0.01)
 
 
 def same(a, b, where):
@@ -75,7 +102,8 @@ def same(a, b, where):
         assert type(a) is type(b) and a == b, (where, a, b)
 
 
-@pytest.mark.parametrize("group", ["modes", "damping", "transient", "luffing", "operation"])
+@pytest.mark.parametrize("group", ["modes", "damping", "transient", "luffing", "operation",
+                                   "member_forces"])
 def test_every_field_comes_back(written, group):
     path, result = written[group]
     back = archive.read(path).results[group]
@@ -143,7 +171,8 @@ def test_h5py_alone_finds_every_documented_dataset(written):
     dataset of the docs/archive.md tables with its documented units; every dataset with
     units in the file is in the tables (doc and file cannot drift)."""
     tables = documented()
-    assert set(tables) == {"modes", "damping", "transient", "luffing", "operation"}
+    assert set(tables) == {"modes", "damping", "transient", "luffing", "operation",
+                           "member_forces"}
     paths = {g: str(p) for g, (p, _) in written.items()}
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     out = subprocess.run([sys.executable, "-c", H5PY_ONLY, json.dumps(paths),
@@ -218,7 +247,8 @@ def test_newer_format_is_refused(tmp_path, written):
 
 # ------------------------------------------------------------------ cranefe show
 
-@pytest.mark.parametrize("group", ["modes", "damping", "transient", "luffing", "operation"])
+@pytest.mark.parametrize("group", ["modes", "damping", "transient", "luffing", "operation",
+                                   "member_forces"])
 def test_show_prints_every_result_as_its_command_does(written, group, capsys):
     """`cranefe show` prints each result's table (the one its own command prints, from
     the values read back) and, with --json, its JSON document."""

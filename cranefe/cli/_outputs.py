@@ -36,7 +36,7 @@ def add_member_force_arguments(p, modes=False):
     """--member-forces (and for modes --member-forces-scale): section forces and stresses
     at the members' ends in --json (docs/structure.md, "Member forces")."""
     p.add_argument("--member-forces", action="store_true", help="add the members' end "
-                   "forces and extreme-fibre stresses to --json" + (
+                   "forces and extreme-fibre stresses to --json and --archive" + (
                        " (per mode)" if modes else " (envelope over the output times)"))
     if modes:
         def amplitude(text):
@@ -151,10 +151,12 @@ def image_size(args):
     return _size(args.image_size)
 
 
-def write_outputs(args, model, system, results, modal, member_forces=None):
+def write_outputs(args, model, system, results, modal, member_forces=None,
+                  colour_forces=None):
     """Write what the options ask for; report each path on stderr. `member_forces`
     (`cranefe.outputs.member_forces.MemberForces` of the modes) adds cell data to --vtu
-    and --xdmf."""
+    and --xdmf; `colour_forces` (the same kind) colours the members of --images by
+    their stress."""
     written = []
     check_outputs(args, model)
     if args.archive is not None:
@@ -174,7 +176,7 @@ def write_outputs(args, model, system, results, modal, member_forces=None):
         from ..outputs.render import render_modes
         written += render_modes(args.images, model, system.dofs, modal,
                                 size=_size(args.image_size), animate=args.animate,
-                                view=args.view)
+                                view=args.view, member_forces=colour_forces)
     for path in written:
         print(f"wrote {path}", file=sys.stderr)
     return written

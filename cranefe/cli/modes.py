@@ -14,6 +14,10 @@ def add_arguments(p):
     p.add_argument("--solver", choices=("auto", "dense", "sparse"), default="auto")
     add_member_force_arguments(p, modes=True)
     add_output_arguments(p)
+    p.add_argument("--color", choices=("displacement", "stress"), default="displacement",
+                   help="with --images: colour the deformed crane by the relative "
+                   "displacement (default) or the members by their extreme-fibre stress "
+                   "in the mode, scaled as --member-forces-scale says")
 
 
 def run(args):
@@ -29,6 +33,10 @@ def run(args):
     model = load(args.file)
     t_load = time.perf_counter() - t0
     check_outputs(args, model)
+    colour = getattr(args, "color", "displacement")
+    if colour == "stress" and not args.images:
+        from ..errors import ModelError
+        raise ModelError("--color stress colours the pictures: give --images DIR")
     count = args.count or model.analysis.get("count")
     system = assemble(model)
     result = modes(model, count=count, solver=args.solver, system=system)
@@ -42,16 +50,23 @@ def run(args):
         modal, shown = partner_modes(model, system, len(result.omega))
         results["damping"] = damping(model, model.effects.damping, shown, system=system,
                                      modal=modal)
-    member_forces = None        # not in `results`: the archive has no place for it yet
-    if getattr(args, "member_forces", False):
+    member_forces = None
+    if getattr(args, "member_forces", False) or colour == "stress":
         from ..outputs.member_forces import modal_member_forces
         mm = system.dofs.members
         if mm is not None and len(mm.member):
             member_forces = modal_member_forces(model, system.dofs, result.shapes,
                                                 result.node_shapes, args.member_forces_scale)
+        elif colour == "stress":
+            from ..errors import ModelError
+            raise ModelError("--color stress colours members, and this model has none "
+                             "as finite elements (members with effects: {structure: "
+                             "flexible})", args.file)
+    if getattr(args, "member_forces", False) and member_forces is not None:
+        results["member_forces"] = member_forces            # the archive's group
     if args.json:
         doc = modes_document(result, comparison)
-        if member_forces is not None:
+        if "member_forces" in results:
             doc["member_forces"] = member_forces.to_dict()
         if "damping" in results:
             from ..outputs.report import damping_document
@@ -64,5 +79,7 @@ def run(args):
         if "damping" in results:
             from ..outputs.report import damping_table
             print(damping_table(results["damping"]))
-    write_outputs(args, model, system, results, result, member_forces=member_forces)
+    write_outputs(args, model, system, results, result,
+                  member_forces=results.get("member_forces"),
+                  colour_forces=member_forces if colour == "stress" else None)
     return 0

@@ -28,7 +28,8 @@ def _presenters():
             "DampingResult": (damping_modes_table, damping_modes_document),
             "TransientResult": (transient_table, transient_document),
             "LuffingResult": (luffing_table, luffing_document),
-            "OperationResult": (operation_table, lambda r: r.to_dict())}
+            "OperationResult": (operation_table, lambda r: r.to_dict()),
+            "MemberForces": (lambda r: r.table(), lambda r: r.summary())}
 
 
 def _present(name, result, presenters):

@@ -144,6 +144,7 @@ def run(args):
     finally:
         progress.close()
     doc = document(result)
+    envelope = None
     if getattr(args, "member_forces", False):
         envelope = _member_force_envelope(model, result)
         if envelope is not None:
@@ -162,7 +163,10 @@ def run(args):
     if args.archive is not None or args.xdmf is not None:
         if args.archive is not None:
             from ..outputs import archive
-            written.append(archive.write(args.archive, model, system, {"transient": result},
+            results = {"transient": result}
+            if envelope is not None:
+                results["member_forces"] = envelope
+            written.append(archive.write(args.archive, model, system, results,
                                          command=["cranefe"] + args.argv,
                                          timings=result.timings))
         if args.xdmf is not None:

@@ -53,6 +53,8 @@ def _result_classes():
     classes["LuffingResult"] = LuffingResult
     from ..analysis.operation.results import OperationResult
     classes["OperationResult"] = OperationResult
+    from .member_forces import MemberForces
+    classes["MemberForces"] = MemberForces
     return classes
 
 
@@ -331,7 +333,17 @@ def write(path, model, system=None, results=None, command=None, timings=None):
 
 
 def _name_nodes(g, obj, node_names):
-    """A modal group: the node names of the rows of `mode_shape`."""
+    """A modal group: the node names of the rows of `mode_shape`; a member-force group:
+    the names of the axes of its arrays."""
+    if type(obj).__name__ == "MemberForces":
+        from .member_forces import FORCE_NAMES, STRESS_NAMES
+        text = lambda v: np.array(v, dtype=object)        # noqa: E731
+        g["section_forces"].attrs["dims"] = text(["state", "element", "end", "component"])
+        g["section_forces"].attrs["components"] = text(FORCE_NAMES)
+        g["section_forces"].attrs["component_units"] = text(["N"] * 3 + ["N m"] * 3)
+        g["extreme_fibre_stress"].attrs["dims"] = text(["state", "element", "end", "fibre"])
+        g["extreme_fibre_stress"].attrs["components"] = text(STRESS_NAMES)
+        return
     if type(obj).__name__ == "ModalResult" and "mode_shape" in g \
             and len(node_names) == g["mode_shape"].shape[1]:
         _describe(_dataset(g, "node_names", np.array(node_names, dtype=str)), None,

@@ -180,6 +180,23 @@ FIELDS = {
         "energy_error": ("energy_error", "1", "energy balance error / largest term"),
         "events": ("events", "s", "events: column_0 the time, column_1 what happened"),
     }),
+    "MemberForces": {
+        "kind": ("kind", None, "what the states are: static | modes | times | envelope "
+                 "(state 0 the minimum, state 1 the maximum over the output times)"),
+        "forces": ("section_forces", "mixed",
+                   "section forces in the element's axes at both ends: N, Vy, Vz in N, "
+                   "T, My, Mz in N m (state, element, end, component); see the "
+                   "attribute components, and the derived datasets in N and N m"),
+        "stress": ("extreme_fibre_stress", "Pa",
+                   "sigma_max, sigma_min at both ends: N/A +- |My|/Wy +- |Mz|/Wz; nan "
+                   "for a beam without Wy (Wz) (state, element, end, 2)"),
+        "pieces": ("pieces", None,
+                   "node-to-node pieces of the members: column_0 member, column_1 type, "
+                   "column_2 from node, column_3 to node, column_4 first element, "
+                   "column_5 last element (0-based, piece)"),
+        "scale": ("scale", None, "how modes are scaled: normalisation, amplitude_m (m)"),
+        "element_member": ("element_member", None, "member of each element (element,)"),
+    },
 }
 
 # datasets computed from the fields for readers of the file: name -> (units,
@@ -199,6 +216,15 @@ DERIVED = {
     "OperationResult": {
         "dynamic_factor": ("1", "peak / static rope force (rope,)",
                            lambda r: r.dynamic_factor),
+    },
+    "MemberForces": {
+        "axial_force": ("N", "N, tension + (state, element, end)",
+                        lambda r: r.forces[..., 0]),
+        "shear_force": ("N", "Vy, Vz (state, element, end, 2)",
+                        lambda r: r.forces[..., 1:3]),
+        "torque": ("N m", "T (state, element, end)", lambda r: r.forces[..., 3]),
+        "bending_moment": ("N m", "My, Mz (state, element, end, 2)",
+                           lambda r: r.forces[..., 4:6]),
     },
 }
 

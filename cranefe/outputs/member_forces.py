@@ -94,6 +94,11 @@ def pieces(model, mm):
     return out
 
 
+def element_members(model, mm):
+    """The member name of every element (ne,)."""
+    return tuple(model.members[int(k)].name for k in mm.member)
+
+
 def _num(v):
     return None if not np.isfinite(v) else float(v)
 
@@ -110,13 +115,15 @@ class MemberForces:
     (the static state, modes, or output times) at both ends of every member element
     (ne, the order of `dofs.members`), with their pieces for reports. `kind`: static |
     modes | envelope (then k = 2: the minimum and the maximum over the run's output
-    times, component by component); `scale`: how modes are scaled."""
+    times, component by component); `scale`: how modes are scaled; `element_member`:
+    the member of each element (ne,)."""
 
     kind: str
     forces: np.ndarray
     stress: np.ndarray
     pieces: list
     scale: dict = field(default_factory=dict)
+    element_member: tuple = ()
 
     def piece_list(self, state):
         """JSON list of the pieces' start and end forces of state `state`."""
@@ -139,6 +146,52 @@ class MemberForces:
              **{end: {"min": p[end], "max": q[end]} for end in ("start", "end")}}
             for p, q in zip(lo, hi)]}
 
+    def peak_stresses(self):
+        """Per member the largest |sigma| over its elements, both ends, both fibres and
+        every state: [{"member", "sigma_abs_max_Pa", "state", "element", "end"}] (state
+        1-based: the mode, the output time, or min 1 / max 2 of an envelope); a member
+        whose stresses are all nan (no Wy / Wz) has sigma_abs_max_Pa None."""
+        S = np.abs(self.stress)                              # (k, ne, 2, 2)
+        members = self.element_member or tuple(
+            m for m, _, _, _, i, j in self.pieces for _ in range(j - i + 1))
+        out = []
+        for name in dict.fromkeys(members):
+            els = np.flatnonzero(np.array(members) == name)
+            sub = S[:, els]
+            if not np.isfinite(sub).any():
+                out.append({"member": name, "sigma_abs_max_Pa": None, "state": None,
+                            "element": None, "end": None})
+                continue
+            k, e, end, _ = np.unravel_index(np.nanargmax(sub), sub.shape)
+            out.append({"member": name, "sigma_abs_max_Pa": float(sub[k, e, end].max()),
+                        "state": int(k) + 1, "element": int(els[e]),
+                        "end": ("start", "end")[end]})
+        return out
+
+    def summary(self):
+        """The short document `cranefe show` prints: kind, scale, states and the
+        largest |sigma| of each member."""
+        return {"kind": self.kind, "scale": self.scale, "states": len(self.forces),
+                "elements": int(self.forces.shape[1]), "peak_stress": self.peak_stresses()}
+
+    def table(self):
+        """Text of `summary()`: one line per member."""
+        state = {"modes": "mode", "envelope": "state (1 min, 2 max)",
+                 "times": "output time"}.get(self.kind, "state")
+        lines = [f"member forces ({self.kind}"
+                 + (f", {self.scale['normalisation']}"
+                    + (f" {self.scale['amplitude_m']:g} m" if "amplitude_m" in self.scale
+                       else "") if self.scale else "")
+                 + f"): {self.forces.shape[1]} elements, largest |sigma| per member",
+                 f"  {'member':<16} {'|sigma| MPa':>12}  {state}, element, end"]
+        for p in self.peak_stresses():
+            if p["sigma_abs_max_Pa"] is None:
+                lines.append(f"  {p['member']:<16} {'-':>12}  (no Wy / Wz)")
+            else:
+                lines.append(f"  {p['member']:<16} {p['sigma_abs_max_Pa'] / 1e6:>12.6g}  "
+                             f"{p['state']}, {p['element']}, {p['end']}")
+        return "\n".join(lines)
+
     def cell_values(self, state):
         """(ne, 8): per element the end value of larger magnitude of N .. Mz, and the
         larger sigma_max / smaller sigma_min of its two ends (ParaView cell data)."""
@@ -152,7 +205,8 @@ class MemberForces:
 def static_member_forces(model, layout, mm, u):
     """MemberForces of the static state u (n_prim,)."""
     F = element_end_forces(model, layout, mm, u, weight=True)
-    return MemberForces("static", F, extreme_stresses(model, mm, F), pieces(model, mm))
+    return MemberForces("static", F, extreme_stresses(model, mm, F), pieces(model, mm),
+                        element_member=element_members(model, mm))
 
 
 def member_end_forces(model, layout, mm, u, trusses=False):
@@ -182,7 +236,8 @@ def modal_member_forces(model, dofs, shapes, node_shapes=None, amplitude=None):
     else:
         scale = {"normalisation": "mass (shapes^T M shapes = I)"}
     F = element_end_forces(model, dofs.layout, mm, U, weight=False)
-    return MemberForces("modes", F, extreme_stresses(model, mm, F), pieces(model, mm), scale)
+    return MemberForces("modes", F, extreme_stresses(model, mm, F), pieces(model, mm), scale,
+                        element_members(model, mm))
 
 
 def run_member_forces(model, dofs, static_u, q):
@@ -191,7 +246,8 @@ def run_member_forces(model, dofs, static_u, q):
     mm = dofs.members
     U = static_u[None] + (dofs.T @ q.T).T
     F = element_end_forces(model, dofs.layout, mm, U, weight=True)
-    return MemberForces("times", F, extreme_stresses(model, mm, F), pieces(model, mm))
+    return MemberForces("times", F, extreme_stresses(model, mm, F), pieces(model, mm),
+                        element_member=element_members(model, mm))
 
 
 def transient_envelope(model, dofs, static_u, q, chunk=256):
@@ -209,4 +265,4 @@ def transient_envelope(model, dofs, static_u, q, chunk=256):
         slo = s0 if slo is None else np.fmin(slo, s0)
         shi = s1 if shi is None else np.fmax(shi, s1)
     return MemberForces("envelope", np.stack([lo, hi]), np.stack([slo, shi]),
-                        pieces(model, mm))
+                        pieces(model, mm), element_member=element_members(model, mm))

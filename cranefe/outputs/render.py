@@ -40,6 +40,9 @@ GROUND_COLOUR = "#5a4a3a"      # supports, posts, drums: what stands on the grou
 FLOOR_COLOUR = "#e4dfd6"
 SCALE = 0.12                   # largest displacement drawn: 12 % of the model size
 BAR_TITLE = "relative displacement"
+COLOURS = ("displacement", "stress")
+STRESS_MAP = "viridis"         # |sigma| of the members: 0 at the low end, the mode's peak
+STRESS_TITLE = "stress MPa"    # at the top of the colour bar
 STYLE = {  # kind: (colour of the undeformed shape, line width)
     "rope": ("#9a9a9a", 2.0), "body": ("#6f6f6f", 6.0), "spring": ("#b0a080", 3.0),
     "member": ("#7f7f7f", 4.0), "drive": ("#8080b0", 5.0),
@@ -206,15 +209,27 @@ class ModeScene:
 
     `show(k, phase)` draws mode k at phase (the displacement times `phase`): it only
     moves the deformed points and the drums and sets the title; nothing is rebuilt.
-    The camera is fitted once to the undeformed crane and every mode at +-1."""
+    The camera is fitted once to the undeformed crane and every mode at +-1.
 
-    def __init__(self, model, dofs, result, size=(1024, 768), view=None):
+    With `member_forces` (the modes' `MemberForces`) the members are coloured by the
+    extreme-fibre stress of the mode, max(|sigma_max|, |sigma_min|) at each element end
+    and linear along the element, from 0 to the mode's largest value (MPa on the colour
+    bar; the other elements are drawn in their own colours)."""
+
+    def __init__(self, model, dofs, result, size=(1024, 768), view=None,
+                 member_forces=None):
         backend()
         import pyvista as pv
         check_view(view)
         self.view = view or ("xz" if model.planar else "iso")
         self.model, self.result = model, result
         self.mesh = mesh = line_mesh(model, dofs)
+        self.stress = None
+        if member_forces is not None:
+            # (m, ne, 2): the larger |sigma| of the two fibres at each element end
+            self.stress = np.fmax(np.abs(member_forces.stress[..., 0]),
+                                  np.abs(member_forces.stress[..., 1]))
+            self.stress_scale = member_forces.scale
         disp = point_displacements(dofs, result.shapes)            # (m, np, 3)
         L = model.length_scale
         peak = np.linalg.norm(disp, axis=2).max(axis=1)             # (m,)
@@ -232,6 +247,9 @@ class ModeScene:
             lines = mesh.lines[mesh.kind == kind]
             p.add_mesh(_polydata(mesh.points, lines), color=colour, line_width=width,
                        opacity=0.5)
+            if self.stress is not None:
+                self._add_stressed(pv, name, lines, colour, width)
+                continue
             d = _polydata(mesh.points, lines)
             d.point_data["relative displacement"] = np.zeros(len(mesh.points))
             p.add_mesh(d, scalars="relative displacement", cmap="viridis", clim=(0.0, 1.0),
@@ -252,6 +270,38 @@ class ModeScene:
         p.show(auto_close=False)            # the first render: later ones only redraw
         p.camera_position = self.camera
 
+    def _add_stressed(self, pv, name, lines, colour, width):
+        """With stress colours: the members as separate two-point lines (each element
+        end its own value), the other kinds deformed in their own colours."""
+        if name != "member":
+            d = _polydata(self.mesh.points, lines)
+            self.p.add_mesh(d, color=colour, line_width=width,
+                            render_lines_as_tubes=name != "rope")
+            self.deformed.append(d)
+            return
+        if len(lines) != self.stress.shape[1]:
+            raise AnalysisError(f"{len(lines)} member lines for {self.stress.shape[1]} "
+                                "member elements")
+        self.member_points = lines.ravel()               # (2 ne,): end a, end b, ...
+        d = _polydata(np.asarray(self.mesh.points, dtype=float)[self.member_points],
+                      np.arange(2 * len(lines)).reshape(-1, 2))
+        d.point_data["stress"] = np.zeros(2 * len(lines))
+        self.stress_actor = self.p.add_mesh(
+            d, scalars="stress", cmap=STRESS_MAP, clim=(0.0, 1.0), line_width=width,
+            render_lines_as_tubes=True, lighting=False, nan_color="#b0b0b0",
+            scalar_bar_args={"title": STRESS_TITLE, "vertical": True,
+                             "position_x": 0.84, "position_y": 0.12, "height": 0.6,
+                             "color": "black", "title_font_size": 14, "n_labels": 3,
+                             "fmt": "%.3g"})
+        self.stressed = d
+
+    def stress_note(self):
+        """The title's line on the stress colours: how the mode is scaled."""
+        sc = self.stress_scale
+        at = f"largest node translation {sc['amplitude_m']:g} m" if "amplitude_m" in sc \
+            else "mass-normalised mode"
+        return f"members: extreme-fibre stress, {at}"
+
     def _ground(self, pv):
         self.floor, self.floor_corners, self.drums = add_ground(
             self.p, self.model, np.asarray(self.mesh.points, dtype=float))
@@ -270,8 +320,16 @@ class ModeScene:
         rel = np.abs(phase) * self.relative[k]
         for d in self.deformed:
             d.points[:] = pts
-            d.point_data["relative displacement"][:] = rel
+            if "relative displacement" in d.point_data:
+                d.point_data["relative displacement"][:] = rel
             d.Modified()
+        if self.stress is not None:
+            sigma = self.stress[k] / 1e6                     # MPa, (ne, 2)
+            top = np.nanmax(sigma) if np.isfinite(sigma).any() else 0.0
+            self.stressed.points[:] = pts[self.member_points]
+            self.stressed.point_data["stress"][:] = np.abs(phase) * sigma.ravel()
+            self.stressed.Modified()
+            self.stress_actor.mapper.scalar_range = (0.0, top if top > 0 else 1.0)
         self.nodes.points[:] = pts
         self.nodes.Modified()
         for actor, node in self.drums:
@@ -284,7 +342,8 @@ class ModeScene:
         r = self.result
         f = r.omega[k] / (2 * np.pi)
         kind = "rigid (quasi-cyclic)" if r.rigid[k] else f"{f:.4g} Hz (T = {1 / f:.4g} s)"
-        return f"{r.model_name}\nmode {k + 1}: {kind}    view {self.view}"
+        text = f"{r.model_name}\nmode {k + 1}: {kind}    view {self.view}"
+        return text + "\n" + self.stress_note() if self.stress is not None else text
 
     def screenshot(self, path):
         from ..outpaths import atomic
@@ -305,9 +364,10 @@ class ModeScene:
 
 
 def render_modes(folder, model, dofs, result, size=(1024, 768), animate=None, frames=24,
-                 view=None):
+                 view=None, member_forces=None):
     """One PNG per mode into `folder` and with animate="gif" (or True) / "mp4" one
-    animation per mode; returns the paths written."""
+    animation per mode; returns the paths written. `member_forces` (of the modes):
+    colour the members by their stress (`ModeScene`)."""
     from ..outpaths import make_folder
     if animate is True:
         animate = "gif"
@@ -316,7 +376,8 @@ def render_modes(folder, model, dofs, result, size=(1024, 768), animate=None, fr
     if animate == "mp4":
         _need_ffmpeg()
     make_folder(folder, "--images")
-    scene = ModeScene(model, dofs, result, size=size, view=view)
+    scene = ModeScene(model, dofs, result, size=size, view=view,
+                      member_forces=member_forces)
     paths = []
     try:
         for k in range(len(result.omega)):
