@@ -58,7 +58,12 @@ def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, psi, invM, Fg,
     ns = Dm.shape[0] // 3
     nx = Dm.shape[1]
     nr = Af.shape[0]
-    d = Dm @ q + dk
+    d = dk.copy()
+    for i in range(3 * ns):
+        acc = 0.0
+        for c in range(nx):
+            acc += Dm[i, c] * q[c]
+        d[i] += acc
     l = np.empty(ns)
     e = np.empty(3 * ns)
     for s in range(ns):
@@ -66,7 +71,10 @@ def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, psi, invM, Fg,
         ls = math.sqrt(x * x + y * y + z * z)
         l[s] = ls
         e[3 * s], e[3 * s + 1], e[3 * s + 2] = x / ls, y / ls, z / ls
-    L = Af @ l + extra
+    L = extra.copy()
+    for r in range(nr):
+        for s in range(ns):
+            L[r] += Af[r, s] * l[s]
     lam = L / L0
     loglam = np.log(lam)
     # eD[s] = e_s . D_s (nx); G[r] = sum_s f_s Af[r, s] eD[s]
@@ -82,7 +90,10 @@ def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, psi, invM, Fg,
             if a != 0.0:
                 for c in range(nx):
                     G[r, c] += a * eD[s, c]
-    edot = G @ v + romega
+    edot = romega.copy()
+    for r in range(nr):
+        for c in range(nx):
+            edot[r] += G[r, c] * v[c]
     if dvk.shape[0]:
         for r in range(nr):
             acc = 0.0
@@ -249,6 +260,27 @@ def _step(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega,
     return 1, q1, v1, c1 * (q1 - qb) - a0, 0.0, its, tangents, out, q1, v1
 
 
+@_jit
+def _step_packed(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega,
+                 taut, psi, invM, Fg, D, falls, span_rope, damped, M, newton_tol,
+                 newton_max, fscale, sfloor, tol):
+    """`_step` with its arrays packed into one (a returned array costs a boxing each):
+    (status, err, iterations, tangents, [q1 v1 a1 q v F | G | l | e | L lam loglam S
+    Sd edot cL])."""
+    st, q1, v1, a1, err, its, tg, out, qi, vi = _step(
+        q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega, taut,
+        psi, invM, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max, fscale,
+        sfloor, tol)
+    F, G, l, e, L, lam, loglam, S, Sd, edot, cL = out
+    n, nr, ns = q0.shape[0], L.shape[0], l.shape[0]
+    buf = np.empty(6 * n + G.size + 4 * ns + 7 * nr)
+    k = 0
+    for x in (q1, v1, a1, qi, vi, F, G.ravel(), l, e, L, lam, loglam, S, Sd, edot, cL):
+        buf[k:k + x.size] = x
+        k += x.size
+    return st, err, its, tg, buf
+
+
 class FastLean(Lean):
     """`Lean` with `step`: the whole trapezoidal step compiled (module docstring)."""
 
@@ -260,6 +292,10 @@ class FastLean(Lean):
                    np.ascontiguousarray(m.Fg, float), np.ascontiguousarray(m.D, float),
                    m.falls.astype(float), np.asarray(m.span_rope, np.int64))
         self._empty = np.zeros(0)
+        n, nr, ns = m.n, self.nr, self.ns
+        cuts = np.cumsum([n] * 6 + [nr * self.nx, ns, 3 * ns] + [nr] * 7)
+        self._cuts = [(int(a), int(b)) for a, b in zip(np.r_[0, cuts], cuts)]
+        self._Gshape = (nr, self.nx)
 
     def step(self, t1, q0, v0, a0, h, taut, jerk, M, newton_tol, newton_max, fscale,
              sfloor, tol):
@@ -267,13 +303,15 @@ class FastLean(Lean):
         kt = self.kin(t1)
         dk, dvk, L0, romega = kt[2], kt[3], kt[7], kt[8]
         Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope = self._c
-        st, q1, v1, a1, err, its, tg, out, qi, vi = _step(
+        st, err, its, tg, buf = _step_packed(
             q0, v0, a0, h, self._empty if jerk is None else jerk, jerk is not None,
             Dm, dk, self._empty if dvk is None else dvk, Af, extra, L0, EA, romega,
             taut, psi, invM, Fg, D, falls, span_rope, bool(self.damped), M,
             newton_tol, newton_max, self._empty if fscale is None else fscale, sfloor,
             tol)
-        F, G, l, e, L, lam, loglam, S, Sd, edot, cL = out
+        q1, v1, a1, qi, vi, F, G, l, e, L, lam, loglam, S, Sd, edot, cL = (
+            buf[a:b] for a, b in self._cuts)
+        G = G.reshape(self._Gshape)
         if taut is not self._taut:
             self._taut, self._alltaut = taut, bool(taut.all())
         ev = Eval(t1, F, None, None, None, None, L, L0, S, Sd, edot, self._z0, kt[5],

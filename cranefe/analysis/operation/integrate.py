@@ -155,7 +155,8 @@ class Stepper:
         (modified Newton: every later iteration costs a residual and a back-substitution);
         made afresh at the current iterate when a correction shrinks by less than 10x.
         Converged when the last correction is below 1e-4 of the tolerance; the forces of
-        that iterate (the correction away) serve the recorder and the event test.
+        that iterate (the correction away) serve the recorder and the event test (their
+        power terms by `ops.powers`, for accepted steps only).
         Predictor: the trapezoidal rule's own q1 = q0 + h v0 + h^2/4 (a0 + a1) with a1
         extrapolated as a0 + h jerk (jerk: the last step's (a0 - a_prev) / h_prev), so
         that the first correction is the extrapolation's O(h^4) error.
@@ -167,7 +168,7 @@ class Stepper:
                 self.fscale, self.sfloor, self.tol)
             self.newton_iterations += its
             self.tangents += tg
-            return None if st else (q1, v1, a1, self.ops.powers(ev), err)
+            return None if st else (q1, v1, a1, ev, err)
         kt = self.ops.kin(t1)
         M, wq = self.M, self.wq
         c1, c2 = 4.0 / (h * h), 2.0 / h
@@ -199,8 +200,7 @@ class Stepper:
                 # O(dq^2); the forces of this iterate serve the recorder
                 q1 = q1 + dq
                 a1 = c1 * (q1 - qb) - a0
-                return (q1, c2 * (q1 - q0) - v0, a1, self.ops.powers(ev),
-                        self.error(h, a0, a1, ev, taut))
+                return q1, c2 * (q1 - q0) - v0, a1, ev, self.error(h, a0, a1, ev, taut)
             if not fresh and dq_norm > 0.1 * prev:
                 Jinv = None                      # slow: a fresh tangent next iteration
             prev = dq_norm
@@ -298,6 +298,7 @@ def simulate(model, progress=None, initial=None, fast=None):
                     st.rejected += 1
                     continue
                 hh, (q1, v1, a1, ev1, _), k = res
+                st.ops.powers(ev1)
                 rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
                 t, q, v = t + hh, q1, v1
                 taut = taut.copy()
@@ -310,6 +311,7 @@ def simulate(model, progress=None, initial=None, fast=None):
                 jerk = None
                 ctl.reset()
                 continue
+            st.ops.powers(ev1)          # the energy terms: for accepted steps only
             rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
             jerk = (a1 - a) / hh
             t, q, v, a, ev = t + hh, q1, v1, a1, ev1
