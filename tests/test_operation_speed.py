@@ -37,7 +37,9 @@ def test_lean_evaluator_equals_the_mechanism(name, effects):
     one (random displacements of 0.3 m and speeds of 1 m/s), at times before, during
     and after the drives' moves (hoisting, trolley, slewing at once on the cycle), a
     rope slack or taut: the same formulas rearranged, equal to rounding (1e-11 of each
-    quantity's scale; the forces' scale is the largest rope force)."""
+    quantity's scale; the forces' scale is the largest rope force). The rows
+    G = dL/dq of the step control's force error too (Generic makes them from the node
+    positions; scale: the falls, up to 4 per span)."""
     mech = _mech(name, **effects)
     assert Lean.covers(mech)
     lean, ref = Lean(mech), Generic(mech)
@@ -54,7 +56,7 @@ def test_lean_evaluator_equals_the_mechanism(name, effects):
                             (a.V, b.V, 1.0), (a.L, b.L, 60.0), (a.L0, b.L0, 60.0),
                             (a.S, b.S, scale), (a.Sd, b.Sd, scale),
                             (a.edot, b.edot, 1.0), (a.theta, b.theta, 1.0),
-                            (a.omega, b.omega, 1.0)):
+                            (a.omega, b.omega, 1.0), (a._G, b._G, 10.0)):
                 np.testing.assert_allclose(x, y, rtol=0, atol=1e-11 * s)
             lean.powers(a)
             ref.powers(b)

@@ -67,9 +67,11 @@ class Generic:
         d = ev.X[m.span_b] - ev.X[m.span_a]
         e = d / np.linalg.norm(d, axis=1)[:, None]
         G = np.zeros((len(ev.L), m.n))
-        G[:, :m.nx] = m.A @ (m.falls[:, None] * np.einsum("si,sij->sj", e, m.D))
+        Gx = m.A @ (m.falls[:, None] * np.einsum("si,sij->sj", e, m.D))
+        G[:, :Gx.shape[1]] = Gx
         for c, k in enumerate(m.qdrums):
-            G[:, m.nx + c] = m.Rd[:, k]
+            if m.nx + c < m.n:
+                G[:, m.nx + c] = m.Rd[:, k]
         ev._G = G
         return ev
 
