@@ -4,7 +4,9 @@ The trapezoidal rule (Newmark's average acceleration, beta = 1/4, gamma = 1/2) o
 nonlinear equations `M q'' = F(t, q, q')`, each step solved by Newton's method on the
 analytic tangent `4/h^2 M + 2/h C + K`; the step is chosen from the local error estimate
 of Zienkiewicz & Xie (1991), `e = h^2 / 12 (a1 - a0)` (the position error of the step),
-against `tolerance x model size`. Steps end at every kink of the prescribed motions; a
+against `tolerance x model size`, and from the error it makes in each rope's force,
+`EA/L G e` (G = dL/dq), against `FORCE_TOL x tolerance x` the rope's force (the larger
+of its static and its current force). Steps end at every kink of the prescribed motions; a
 rope going slack or taut ends a step where its stretch ln(L/L0) crosses zero (located by
 the Illinois variant of regula falsi on the step length, each trial a full step).
 """
@@ -16,12 +18,19 @@ import numpy as np
 from scipy.linalg.lapack import dgetrf, dgetri
 
 from ...errors import AnalysisError
-from .lean import ops as _ops
+from . import fast as _fast
+from .lean import Lean, ops as _ops
 from .mechanism import Mechanism
 from .results import Recorder
 from .scene import parse
 
 NEWTON_MAX = 12
+# the local error of the rope forces is held below FORCE_TOL x tolerance x the rope's
+# static force (docs/operations.md "Integrator": chosen so that the default tolerance
+# gives the peak forces of the bundled scenes to ~1e-3 or better (measured 1.2e-4 on
+# the tower-crane cycle, 9.6e-4 on its lowering alone); 100 leaves 1.7e-3 on the
+# cycle, 10 halves the error at 1.25x the steps)
+FORCE_TOL = 20.0
 MAX_STEPS = 2_000_000
 
 
@@ -65,9 +74,16 @@ class StepControl:
 
 
 class Stepper:
-    def __init__(self, mech, spec, lscale):
+    def __init__(self, mech, spec, lscale, fast=None):
         self.m, self.spec = mech, spec
         self.ops = _ops(mech)
+        # the compiled step (fast.py) where Lean covers the mechanism and numba is
+        # installed (fast=None), or as asked (fast=False: numpy, the reference)
+        if fast is None:
+            fast = _fast.available()
+        self.fast = bool(fast) and type(self.ops) is Lean and _fast.available()
+        if self.fast:
+            self.ops = _fast.FastLean(mech)
         self.lscale = lscale
         n = mech.n
         self.wq = np.ones(n)                       # weights: metres of motion
@@ -78,9 +94,19 @@ class Stepper:
         self.M = mech.M
         self.diag = np.arange(n) * (n + 1)         # flat indices of a (n, n) diagonal
         self.newton_tol = 1e-4 * spec.tolerance * lscale
+        self.tol = spec.tolerance * lscale
         self.steps = self.rejected = self.newton_iterations = 0
         self.tangents = 0
         self.events = []
+        # rope force error: the scale of each rope's force is the larger of its
+        # current force and its static force (at least 1 % of the largest static
+        # force); none if no rope carries a static force. fscale = EA / ftol
+        S0 = np.abs(np.asarray(mech.S0, float)) if len(mech.ropes) else np.zeros(0)
+        smax = float(S0.max(initial=0.0))
+        self.ftol = FORCE_TOL * spec.tolerance
+        self.fscale = (None if smax <= 0 or self.ftol <= 0 else
+                       np.asarray(mech.EA, float) / self.ftol)
+        self.sfloor = np.maximum(S0, 1e-2 * smax)
 
     def kin(self, t):
         return self.ops.kin(t)
@@ -103,20 +129,46 @@ class Stepper:
         inv, info = dgetri(lu, piv, overwrite_lu=True)
         return inv if info == 0 else None
 
+    def error(self, h, a0, a1, ev1, taut):
+        """The step's local error relative to the tolerances: the larger of the
+        position error `h^2/12 |a1 - a0|` (Zienkiewicz & Xie 1991) over
+        `tolerance x model size` (drum angles weighted by their radius), and the
+        error it makes in each taut rope's force, `EA/L |G h^2/12 (a1 - a0)|`
+        (G = dL/dq: the elongation error times the axial stiffness), over
+        `FORCE_TOL x tolerance x` the larger of its static and its current force."""
+        da = a1 - a0
+        err = float(np.abs(da if self.wq is None else da * self.wq).max(initial=0.0))
+        err /= self.tol
+        if self.fscale is not None:
+            ef = self.fscale * (ev1._G @ da) / (ev1.L * np.maximum(self.sfloor,
+                                                                   np.abs(ev1.S)))
+            ef = float(np.abs(ef if self.m_alltaut(taut) else
+                              np.where(taut, ef, 0.0)).max(initial=0.0))
+            err = max(err, ef)
+        return err * (h * h / 12.0)
+
     def step(self, t0, q0, v0, a0, h, taut, jerk=None):
-        """One trapezoidal step of length h -> (q1, v1, a1, ev1) or None.
+        """One trapezoidal step of length h -> (q1, v1, a1, ev1, err) or None.
 
         Newton's method from a predictor, on the tangent `4/h^2 M + 2/h C + K` made and
         factorised at the predictor and kept while the iteration contracts fast
         (modified Newton: every later iteration costs a residual and a back-substitution);
         made afresh at the current iterate when a correction shrinks by less than 10x.
         Converged when the last correction is below 1e-4 of the tolerance; the forces of
-        that iterate (the correction away) serve the recorder and the event test.
+        that iterate (the correction away) serve the recorder and the event test (their
+        power terms by `ops.powers`, for accepted steps only).
         Predictor: the trapezoidal rule's own q1 = q0 + h v0 + h^2/4 (a0 + a1) with a1
         extrapolated as a0 + h jerk (jerk: the last step's (a0 - a_prev) / h_prev), so
         that the first correction is the extrapolation's O(h^4) error.
         """
         t1 = t0 + h
+        if self.fast:
+            st, q1, v1, a1, err, its, tg, ev = self.ops.step(
+                t1, q0, v0, a0, h, taut, jerk, self.M, self.newton_tol, NEWTON_MAX,
+                self.fscale, self.sfloor, self.tol)
+            self.newton_iterations += its
+            self.tangents += tg
+            return None if st else (q1, v1, a1, ev, err)
         kt = self.ops.kin(t1)
         M, wq = self.M, self.wq
         c1, c2 = 4.0 / (h * h), 2.0 / h
@@ -147,7 +199,8 @@ class Stepper:
                 # quadratic (or fast linear) convergence: the residual at q1 + dq is
                 # O(dq^2); the forces of this iterate serve the recorder
                 q1 = q1 + dq
-                return q1, c2 * (q1 - q0) - v0, c1 * (q1 - qb) - a0, self.ops.powers(ev)
+                a1 = c1 * (q1 - qb) - a0
+                return q1, c2 * (q1 - q0) - v0, a1, ev, self.error(h, a0, a1, ev, taut)
             if not fresh and dq_norm > 0.1 * prev:
                 Jinv = None                      # slow: a fresh tangent next iteration
             prev = dq_norm
@@ -171,12 +224,14 @@ class Stepper:
         return np.log(ev.L / ev.L0)
 
 
-def simulate(model, progress=None, initial=None):
+def simulate(model, progress=None, initial=None, fast=None):
     """Integrate the operation scene of `model` -> `OperationResult`.
 
     initial : optional dict {"q": (n,), "v": (n,)} replacing the static state (for tests
         and scripts: e.g. a load already on its steady slewing orbit); the ropes' unstretched
         lengths stay those of the static state.
+    fast : None (default): the compiled step of fast.py when numba is installed and the
+        mechanism is one `Lean` covers; False: the numpy step (the reference).
 
     Length: the time-stepping loop with its step control and event location in one
     frame, as the transient engine's Newmark loop.
@@ -185,7 +240,7 @@ def simulate(model, progress=None, initial=None):
     spec = parse(model)
     mech = Mechanism(model, spec)
     lscale = model.length_scale
-    st = Stepper(mech, spec, lscale)
+    st = Stepper(mech, spec, lscale, fast)
     T = spec.duration
     q = mech.q0.copy()
     v = np.zeros(mech.n)
@@ -207,7 +262,6 @@ def simulate(model, progress=None, initial=None):
                 if 0 < b0_ < T:
                     st.events.append((b0_, f"drive {d.name} stops"))
     h = min(spec.max_step, 1e-3 * T, 1e-2)
-    tol = spec.tolerance * lscale
     hmin = 1e-12 * max(T, 1.0)
     ctl = StepControl()
     jerk = None                  # (a0 - a_prev) / h_prev of the last accepted step
@@ -228,9 +282,7 @@ def simulate(model, progress=None, initial=None):
                 if h < hmin:
                     raise _blowup(t, h, "Newton's method does not converge", mech, ev, taut)
                 continue
-            q1, v1, a1, ev1 = out
-            da = np.abs(a1 - a) if st.wq is None else np.abs((a1 - a) * st.wq)
-            err = float(da.max(initial=0.0)) * (hh * hh / 12.0) / tol
+            q1, v1, a1, ev1, err = out
             if err > 1.0:
                 st.rejected += 1
                 h = ctl.rejected(hh, err)
@@ -245,7 +297,8 @@ def simulate(model, progress=None, initial=None):
                     h = hh * 0.25
                     st.rejected += 1
                     continue
-                hh, (q1, v1, a1, ev1), k = res
+                hh, (q1, v1, a1, ev1, _), k = res
+                st.ops.powers(ev1)
                 rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
                 t, q, v = t + hh, q1, v1
                 taut = taut.copy()
@@ -258,6 +311,7 @@ def simulate(model, progress=None, initial=None):
                 jerk = None
                 ctl.reset()
                 continue
+            st.ops.powers(ev1)          # the energy terms: for accepted steps only
             rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
             jerk = (a1 - a) / hh
             t, q, v, a, ev = t + hh, q1, v1, a1, ev1

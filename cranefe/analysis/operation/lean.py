@@ -58,8 +58,21 @@ class Generic:
         self.kin = _TimeCache(mech.kinematics)
 
     def evaluate(self, t, q, v, taut, kin, tangent=True, full=True):
+        m = self.m
         ev = self.m.evaluate(t, q, v, taut, kin, powers=False)
         ev._q, ev._v = q, v
+        # G = dL/dq (the rope lengths' rows; Mechanism.evaluate's eD products) for the
+        # step control's force error; drum coordinates: dL0/dtheta = -R, i.e. +R on
+        # the elongation; joint coordinates (if any) left out
+        d = ev.X[m.span_b] - ev.X[m.span_a]
+        e = d / np.linalg.norm(d, axis=1)[:, None]
+        G = np.zeros((len(ev.L), m.n))
+        Gx = m.A @ (m.falls[:, None] * np.einsum("si,sij->sj", e, m.D))
+        G[:, :Gx.shape[1]] = Gx
+        for c, k in enumerate(m.qdrums):
+            if m.nx + c < m.n:
+                G[:, m.nx + c] = m.Rd[:, k]
+        ev._G = G
         return ev
 
     def powers(self, ev):
@@ -262,7 +275,7 @@ class Lean:
         ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, self._z0, theta, omega,
                   self._znd, None, None, None)
         ev._q, ev._v, ev._l, ev._e, ev._lam, ev._kt, ev._taut = q, v, l, ef, lam, kt, taut
-        ev._loglam, ev._St, ev._cL = loglam, St, cL
+        ev._loglam, ev._St, ev._cL, ev._G = loglam, St, cL, G
         return ev
 
     def powers(self, ev):
