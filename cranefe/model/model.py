@@ -54,6 +54,11 @@ class Joint:
     name: str = None         # optional name (operation scenes drive joints by name)
     range: np.ndarray = None  # (2,) travel from the reference: m (slider), rad (hinge)
 
+    @property
+    def label(self):
+        """The joint in messages: its name and entry (``'luffing' (joints[0])``)."""
+        return f"'{self.name}' ({self.entry})" if self.name else self.entry
+
 
 @dataclass(frozen=True)
 class Spring:

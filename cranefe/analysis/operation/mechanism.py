@@ -26,7 +26,6 @@ from ...model.model import GROUND
 from ... import elements as kernels
 from .joints import joint_jacobian, pair, subtree_mass
 from .linkage import LinkageDrive
-from .scene import _joint_label as _label, late_drives
 
 
 @dataclass
@@ -73,7 +72,7 @@ class Mechanism:
         if model.effects.rope_mass:
             self.warnings.append("rope_mass is not used by operation scenes yet: ropes are "
                                  "massless")
-        self.warnings += late_drives(spec)
+        self.warnings += spec.late_drives()
         self._tree(model)
         self._nodes(model)
         self._joint_setup(model)
@@ -125,13 +124,13 @@ class Mechanism:
                 continue
             if any(b in moving for b in j.bodies if b != GROUND):
                 raise ModelError(
-                    f"{_label(j)} closes a loop of bodies that the drives move; closed "
+                    f"{j.label} closes a loop of bodies that the drives move; closed "
                     "linkages are not solved by operation scenes yet (drive a joint "
                     "outside the loop)", model.scene_file or model.file,
                     driven[next(iter(driven))].entry if driven else None)
         for k, d in driven.items():
             if k not in used:
-                raise ModelError(f"{_label(model.joints[k])} closes a loop of bodies: "
+                raise ModelError(f"{model.joints[k].label} closes a loop of bodies: "
                                  "driving it is not supported", model.scene_file, d.entry)
         free_bodies = [model.bodies[b].name for b in range(nb) if b not in parent]
         self.free_bodies = free_bodies
@@ -147,7 +146,7 @@ class Mechanism:
                 pa, ka = parent[a]
                 if ka in driven and driven[ka].coordinate:
                     raise ModelError(
-                        f"drive '{driven[k].name}' moves {_label(model.joints[k])} on the "
+                        f"drive '{driven[k].name}' moves {model.joints[k].label} on the "
                         f"bodies that drive '{driven[ka].name}' carries as a coordinate; "
                         "a torque, force, motor or free joint with a moving joint below "
                         "it is not solved yet (prescribe the outer joint's motion with a "
@@ -306,7 +305,7 @@ class Mechanism:
             else:
                 rho = 1.0
             if m <= 0:
-                raise ModelError(f"drive '{d.name}' moves {_label(j)} as a coordinate, but "
+                raise ModelError(f"drive '{d.name}' moves {j.label} as a coordinate, but "
                                  "the bodies it carries have no mass; give them mass "
                                  "(bodies.NAME.mass) or prescribe a profile",
                                  model.scene_file or model.file, d.entry)
@@ -640,7 +639,7 @@ class Mechanism:
                                  f"it moved it there{by}",
                          "motor": "a motor that does not stop it",
                          }.get(d.kind, f"a drive {load} that does not stop it")
-                name = _label(j)
+                name = j.label
                 raise AnalysisError(
                     f"at t = {t:.6g} s {name} (drive '{d.name}') "
                     f"reached {s * f:.6g} {u}, past the end of its range "
@@ -975,7 +974,7 @@ class Mechanism:
         if weight > 0 and np.abs(resid).max() > 1e-8 * weight and worst >= self.nc:
             jc = self.jc[free_j[worst - self.nc]]
             raise ModelError(f"the model's geometry is not a static equilibrium: the ropes "
-                             f"cannot hold {_label(model.joints[jc['joint']])} (free in "
+                             f"cannot hold {model.joints[jc['joint']].label} (free in "
                              f"drive '{jc['drive'].name}') there (unbalanced "
                              f"{abs(resid[worst]) * jc['rho']:.4g} N m or N); reeve a rope "
                              "that holds it, or drive it by a torque", file,
@@ -1035,7 +1034,7 @@ class Mechanism:
                 f"; the drive gives {given:.6g} {u} at t = 0, so the bodies start out of " \
                 "equilibrium and fall onto the unloaded rope"
             self.warnings.append(
-                f"drive '{d.name}' ({d.kind}) on {_label(j)}: at rest the joint is "
+                f"drive '{d.name}' ({d.kind}) on {j.label}: at rest the joint is "
                 f"held like a drum: its holding {'torque' if jc['hinge'] else 'force'} "
                 f"{hold:.6g} {u} carries the whole static load and rope(s) "
                 f"{', '.join(ropes)}, which also hold the bodies it moves, carry 0 N{off} "

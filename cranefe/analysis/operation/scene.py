@@ -77,6 +77,18 @@ class Operation:
         ends = [d.motion.end for d in self.drives if d.motion is not None]
         return max(ends) if ends else 0.0
 
+    def late_drives(self):
+        """Warnings for prescribed drives whose every move starts at or after the end of
+        the run (a shortened cycle: they do nothing in it)."""
+        out = []
+        for d in self.drives:
+            moves = d.motion.moves() if d.motion is not None else []
+            if moves and all(a >= self.duration for a, _ in moves):
+                out.append(f"drive '{d.name}' starts moving at t = {moves[0][0]:g} s, at "
+                           f"or after the end of the run ({self.duration:g} s): it does "
+                           "nothing in this run")
+        return out
+
 
 def parse(model):
     """The operation analysis of a scene `model`, checked."""
@@ -382,24 +394,6 @@ def _range_key(model, j):
     return f"{j.entry}.range"
 
 
-def _joint_label(j):
-    """A joint in messages: its name and entry (``luffing (joints[0])``)."""
-    return f"'{j.name}' ({j.entry})" if j.name else j.entry
-
-
-def late_drives(op):
-    """Warnings for prescribed drives whose every move starts at or after the end of
-    the run (a shortened cycle: they do nothing in it)."""
-    out = []
-    for d in op.drives:
-        moves = d.motion.moves() if d.motion is not None else []
-        if moves and all(a >= op.duration for a, _ in moves):
-            out.append(f"drive '{d.name}' starts moving at t = {moves[0][0]:g} s, at or "
-                       f"after the end of the run ({op.duration:g} s): it does nothing in "
-                       "this run")
-    return out
-
-
 def _check_travel(model, r, d, duration):
     """The prescribed travel stays in the slider's or hinge's range, and a drum neither
     pays out more rope than it holds nor hauls the hook block into its sheaves."""
@@ -411,13 +405,13 @@ def _check_travel(model, r, d, duration):
         f = 1.0 if d.target == "slider" else 180 / np.pi
         if j.range is None:
             if d.target == "slider":
-                r.fail(d.entry, f"the slider {_joint_label(j)} has no range: add range: "
+                r.fail(d.entry, f"the slider {j.label} has no range: add range: "
                        f"[min, max] (m along its axis from the model's position) to "
                        f"{j.entry} in the model file ({model.file}), so the travel can "
                        "be checked")
             return
         if lo < j.range[0] - 1e-12 or hi > j.range[1] + 1e-12:
-            r.fail(e, f"the drive moves {_joint_label(j)} over [{lo * f:.6g}, {hi * f:.6g}]"
+            r.fail(e, f"the drive moves {j.label} over [{lo * f:.6g}, {hi * f:.6g}]"
                    f" {u} within {duration:g} s, past the end of its range "
                    f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u} ({model.file}, "
                    f"{_range_key(model, j)}); shorten the move or extend the range")
