@@ -77,8 +77,15 @@ PRESETS = {
     "damping_exact": ("cranefe/analysis/damping/exact.py",
                       ["tests/test_values.py", "tests/test_damping.py",
                        "tests/test_mutation_kills_exact.py"]),
+    # newmark: every transient test steps through it; the fast ones that cover its
+    # branches (linear steps, slack/taut events, lift-off, motors' Newton loop)
     "newmark": ("cranefe/analysis/transient/newmark.py",
-                ["tests/test_transient.py", "tests/test_mutation_kills_newmark.py"]),
+                ["tests/test_mutation_kills_newmark.py",
+                 "tests/test_transient.py::test_step_torque_against_the_closed_form",
+                 "tests/test_transient.py::test_lift_off_at_constant_hauling_speed",
+                 "tests/test_transient.py::test_slack_rope_retensioned_against_the_closed_form",
+                 "tests/test_transient.py::test_slack_rope_events_keep_the_energy",
+                 "tests/test_transient.py::test_motor_runs_up_to_its_steady_speed"]),
     "luffing_energy": ("cranefe/analysis/luffing/energy.py",
                        ["tests/test_values.py", "tests/test_luffing.py",
                         "tests/test_mutation_kills_luffing.py"]),
