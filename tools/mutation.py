@@ -67,6 +67,7 @@ PRESETS = {
                 "tests/test_validation_study.py::test_spatial_spreader_with_sway_against_exudyn",
                 "tests/test_structures.py::test_column_buckles_under_its_own_weight_at_greenhill",
                 "tests/test_structures.py::test_modes_see_the_self_weight_buckling_load",
+                "tests/test_mutation_kills_damping.py",
                 "tests/test_mutation_kills_system.py"]),
     "statics": ("cranefe/statics.py",
                 ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
