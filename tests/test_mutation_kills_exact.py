@@ -148,3 +148,17 @@ def test_slow_modes_scale_with_the_mass(path, monkeypatch):
     np.testing.assert_allclose(v, v_ref * f, rtol=1e-9)
     np.testing.assert_allclose(h, h_ref * f, rtol=1e-9)
     assert v[:, 1].max() < 1.0
+
+
+def test_arpack_fallback_against_mpmath(monkeypatch):
+    """When the block iteration does not converge, `_nearest` falls back to ARPACK
+    (shift-invert, 8 Ritz values, the one most like the mode). Forced here by a block
+    iteration that never converges; the results are the same exact eigenvalues (1e-9:
+    ARPACK's default tolerance is machine precision on a 6 x 6 operator)."""
+    monkeypatch.setattr(exact, "DENSE_MAX", 0)
+    monkeypatch.setattr(exact, "_block_inverse",
+                        lambda apply, Z0, pick, **kw: (np.nan, None, False))
+    v_ref, h_ref = _exact_by_mpmath()
+    v, h, _ = _run()
+    np.testing.assert_allclose(v, v_ref, rtol=1e-9)
+    np.testing.assert_allclose(h, h_ref, rtol=1e-9)
