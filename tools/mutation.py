@@ -87,8 +87,10 @@ PRESETS = {
                  "tests/test_transient.py::test_slack_rope_retensioned_against_the_closed_form",
                  "tests/test_transient.py::test_slack_rope_events_keep_the_energy",
                  "tests/test_transient.py::test_motor_runs_up_to_its_steady_speed"]),
+    # luffing: tests/test_luffing.py runs whole analyses (up to 7 s each): the J(alpha)
+    # value test and the kill test reach every quantity of energy.py in a few seconds
     "luffing_energy": ("cranefe/analysis/luffing/energy.py",
-                       ["tests/test_values.py", "tests/test_luffing.py",
+                       ["tests/test_values.py::test_portal_crane_reduced_inertia_from_an_independent_linkage",
                         "tests/test_mutation_kills_luffing.py"]),
     "luffing_kinematics": ("cranefe/analysis/luffing/kinematics.py",
                            ["tests/test_values.py", "tests/test_luffing.py",
