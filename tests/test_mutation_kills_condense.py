@@ -40,3 +40,40 @@ def test_massless_block_moves_by_static_condensation(m):
     x, y = md.shapes[1, 0], md.shapes[0, 0]
     assert math.isclose(abs(x), 1 / math.sqrt(m), rel_tol=1e-12)
     assert math.isclose(y / x, k2 / (k1 + k2), rel_tol=1e-12)
+
+
+ROTATION = """cranefe: 1
+plane: xz
+nodes: {S: [0, 0, 10], A: [0, 0, 4], B: [2, 0, 4]}
+ground: [S]
+bodies:
+  beam: {mass: 300, com: A, inertia: 0, nodes: [A, B]}
+ropes:
+  r: {EA: 1.0e6, path: [S, A]}
+"""
+
+
+def test_massless_mechanism_error_names_file_entry_and_coordinate():
+    """Bad input names file + entry + fix (common contract): one rope at the centre of
+    mass of a body without rotary inertia leaves its rotation with neither stiffness nor
+    inertia. The message's file, entry and text were mutated freely in the condense run
+    (`model.file` -> None, `entry_of(...)` dropped, the text altered) without a failure."""
+    from cranefe.errors import ModelError
+    with pytest.raises(ModelError) as err:
+        modes(load("u.yaml", ROTATION))
+    e = err.value
+    assert (e.file, e.entry) == ("u.yaml", "bodies.beam")
+    assert e.message == (
+        "massless and unrestrained: body beam ry can move with no stiffness and no "
+        "inertia; attach a rope or spring in that direction, give it mass, or add it to "
+        "ground")
+
+
+def test_nothing_with_inertia_names_the_file():
+    from cranefe.condense import condense
+    from cranefe.errors import ModelError
+    text = SERIES.replace("masses: {B: 2000}\n", "")
+    with pytest.raises(ModelError) as err:
+        condense(assemble(load("n.yaml", text)))
+    assert err.value.file == "n.yaml"
+    assert err.value.message.startswith("nothing that moves has inertia")
