@@ -15,6 +15,7 @@ from ...model import units
 from ...model.load import _Reader
 from ..transient.scene import Motor, Profile, _motor, _profile
 from . import profiles
+from .joints import range_entry
 
 KEYS = {"type", "duration", "tolerance", "max_step", "output_step", "drives", "initial"}
 DEFAULT_TOLERANCE = 1e-7       # local error per step, relative to the model's size
@@ -378,22 +379,6 @@ def _rope_rate(model, drum_index):
             if drum_index in rope.end_drums}
 
 
-def _range_key(model, j):
-    """Where the joint's range is written in the model file: range or range_deg (read
-    back from the file: only called for a message)."""
-    if j.type == "hinge":
-        try:
-            import yaml
-            with open(model.file, encoding="utf-8") as fh:
-                joints = yaml.safe_load(fh).get("joints")
-            k = int(j.entry.split("[")[1].rstrip("]"))
-            if "range_deg" in joints[k]:
-                return f"{j.entry}.range_deg"
-        except Exception:          # noqa: BLE001 - a message detail only
-            return f"{j.entry}.range or range_deg"
-    return f"{j.entry}.range"
-
-
 def _check_travel(model, r, d, duration):
     """The prescribed travel stays in the slider's or hinge's range, and a drum neither
     pays out more rope than it holds nor hauls the hook block into its sheaves."""
@@ -414,7 +399,7 @@ def _check_travel(model, r, d, duration):
             r.fail(e, f"the drive moves {j.label} over [{lo * f:.6g}, {hi * f:.6g}]"
                    f" {u} within {duration:g} s, past the end of its range "
                    f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u} ({model.file}, "
-                   f"{_range_key(model, j)}); shorten the move or extend the range")
+                   f"{range_entry(model, j)}); shorten the move or extend the range")
         return
     drum = model.drums[d.index]
     rates = _rope_rate(model, d.index)
