@@ -161,7 +161,7 @@ def test_cart_under_a_constant_force_momentum_theorem_and_energy(tmp_path):
     assert res.energy_error < 1e-7
     assert res.energy["work_drives"] == pytest.approx(F * res.drive_position[-1, 0],
                                                       rel=1e-6)
-    assert res.to_dict()["drives"]["c"]["torque_max_N_m"] == pytest.approx(F)
+    assert res.to_dict()["drives"]["c"]["force_max_N"] == pytest.approx(F)
     # the load swings back behind the accelerating trolley: tan(theta) -> F / ((M+m) g)
     assert res.sway_max_deg[0] > np.degrees(np.arctan(F / (3000 * G)))
 

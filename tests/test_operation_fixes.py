@@ -280,3 +280,50 @@ def test_messages_name_named_joints(tmp_path, capsys):
                     "\n    trolley: {slider: trolley_travel, profile: {type: trapezoid, "
                     "distance: 2, v_max: 1, a_max: 1}}\n")
     refused(path, capsys, "analysis.drives.trolley", "'trolley_travel' (joints[2])")
+
+
+# ------------------------------------------------------- 8. the JSON contract of a run
+
+def test_a_failed_run_reports_the_time_it_reached_and_no_later_events(tmp_path):
+    """The torque drum above runs out of rope at ~2 s of a 5 s scene: duration_s is the
+    time reached, not the scene's 5 s, and no event after it is listed."""
+    p = scene(tmp_path, OVERHEAD, "  duration: 5\n  drives:\n    hoist: {drum: hoist, "
+              "torque: 0}\n")
+    with pytest.raises(AnalysisError) as exc:
+        simulate(load(p))
+    doc = exc.value.result.to_dict()
+    assert doc["status"] == 1 and doc["duration_s"] < 2.5
+    assert doc["duration_s"] == pytest.approx(exc.value.result.times[-1])
+    assert all(float(e.split(" s:")[0]) <= doc["duration_s"] for e in doc["events"])
+
+
+def test_torque_drives_have_no_residual_sway_and_report_their_holding_torque(tmp_path):
+    """A drum on a torque table from -2e4 N m to its end value acts to the end of the
+    run: no drive 'stops', so the residual sway is null (not the largest sway of the
+    whole run) and no warning says the run ends too soon after the last stop; the
+    largest torque is the largest in magnitude, with its sign (-2e4, not the 0 of a
+    plain max)."""
+    p = scene(tmp_path, OVERHEAD, "  duration: 0.5\n  drives:\n    hoist: {drum: hoist, "
+              "torque: [[0, -20000], [0.5, 0]]}\n")
+    doc = simulate(load(p)).to_dict()
+    assert doc["motion_end_s"] is None
+    assert all(s["residual_deg"] is None for s in doc["sway"].values())
+    assert not any("after the last drive stops" in w for w in doc["warnings"])
+    assert doc["drives"]["hoist"]["torque_max_N_m"] == pytest.approx(-20000)
+
+
+def test_a_slider_force_drive_is_a_force_with_its_holding_force(tmp_path):
+    """A slider driven by a force is reported as kind 'force' in N, with the force that
+    holds it at rest (zero on a level rail with the load hanging still)."""
+    from test_operation_dyn import CART, scene as dyn_scene
+    p = dyn_scene(tmp_path, CART, "  duration: 0.2\n  drives:\n    c: {slider: travel, "
+                  "force: 500}\n", MLOAD=2000, MCART=1000, EAVAL=1.0e8)
+    d = simulate(load(p)).to_dict()["drives"]["c"]
+    assert d["kind"] == "force" and d["force_max_N"] == pytest.approx(500)
+    assert "torque_max_N_m" not in d and d["holding_force_N"] == pytest.approx(0, abs=1e-6)
+
+
+def test_a_move_starting_at_zero_is_an_event(tmp_path):
+    p = scene(tmp_path, OVERHEAD, "  duration: 0.3\n  drives:\n    hoist: {drum: hoist, "
+              "profile: {type: trapezoid, distance: 1, v_max: 1, a_max: 2}}\n")
+    assert "0 s: drive hoist starts" in simulate(load(p)).to_dict()["events"]

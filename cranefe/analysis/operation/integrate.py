@@ -257,7 +257,7 @@ def simulate(model, progress=None, initial=None, fast=None):
     for d in spec.drives:
         if d.motion is not None:
             for a0_, b0_ in d.motion.moves():
-                if 0 < a0_ < T:
+                if 0 <= a0_ < T:
                     st.events.append((a0_, f"drive {d.name} starts"))
                 if 0 < b0_ < T:
                     st.events.append((b0_, f"drive {d.name} stops"))

@@ -70,6 +70,7 @@ class OperationResult:
     warnings: list = field(default_factory=list)
     status: int = 0
     message: str = "ok"
+    holding: dict = field(default_factory=dict)   # drive -> N m or N at rest, t = 0
 
     @property
     def dynamic_factor(self):
@@ -83,11 +84,20 @@ class OperationResult:
         drives = {}
         for k, n in enumerate(self.drive_names):
             pu, su = self.drive_units[k]
-            drives[n] = {"kind": self.drive_kind[k], "units": [pu, su],
+            tq = self.drive_torque[:, k]
+            linear = pu == "m"                 # a slider's force, in N
+            kind = self.drive_kind[k]
+            drives[n] = {"kind": "force" if linear and kind == "torque" else kind,
+                         "units": [pu, su],
                          "position_final": _num(self.drive_position[-1, k]),
                          "speed_max": _num(np.abs(self.drive_speed[:, k]).max()),
-                         "torque_max_N_m": _num(np.nanmax(self.drive_torque[:, k]))
-                         if np.any(np.isfinite(self.drive_torque[:, k])) else None}
+                         # the largest in magnitude, with its sign
+                         ("force_max_N" if linear else "torque_max_N_m"):
+                         _num(tq[np.nanargmax(np.abs(tq))])
+                         if np.any(np.isfinite(tq)) else None}
+            if n in self.holding:
+                drives[n]["holding_" + ("force_N" if linear else "torque_N_m")] = \
+                    _num(self.holding[n])
         return {
             "model": self.model_name, "scene": self.scene, "analysis": "operation",
             "effects": self.effects, "dofs": len(self.coordinates),
@@ -309,7 +319,9 @@ class Recorder:
             warnings.append("damping: modal is applied as element dashpots b = psi c / "
                             "(2 pi w) at each rope's current axial frequency (modes do not "
                             "exist along a large motion)")
-        t_end = spec.motion_end
+        # a torque, force or motor drive acts to the end: no free swing after it
+        active = any(d.kind in ("torque", "motor") for d in spec.drives)
+        t_end = np.inf if active else spec.motion_end
         resid = np.full(len(m.free), np.nan)
         if np.isfinite(t_end) and len(t) and t_end < t[-1]:
             after = t >= t_end - 1e-9
@@ -344,12 +356,16 @@ class Recorder:
         labels += [f"drum {model.drums[k].name}" for k in m.qdrums]
         return OperationResult(
             model.name, model.scene or "", model.effects.as_dict(), tuple(labels),
-            spec.duration, st.steps, st.rejected, st.newton_iterations, t,
+            float(t[-1]) if status and len(t) else spec.duration, st.steps,
+            st.rejected, st.newton_iterations, t,
             tuple(model.node_names[i] for i in self.mass_nodes), X,
             tuple(r.name for r in model.ropes), F, static, fmax, tmax,
             tuple(d.name for d in spec.drives), units,
             tuple(d.kind for d in spec.drives), pos, spd, tq,
             tuple(model.node_names[i] for i in m.free), sw,
             sw.max(axis=0) if nt else np.full(len(m.free), np.nan), resid,
-            float(t_end), energy, float(err), sorted(st.events), timings, warnings,
-            status, message)
+            float(t_end), energy, float(err),
+            sorted(e for e in st.events if not (status and len(t) and e[0] > t[-1])),
+            timings, warnings, status, message,
+            {jc["drive"].name: float(m.joint_hold[c]) for c, jc in enumerate(m.jc)
+             if jc["drive"].kind in ("torque", "motor")})
