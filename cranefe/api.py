@@ -96,10 +96,12 @@ def sweep(spec, workers=None, scheduler=None, reuse=True):
     return summarise(s, run_sweep(s, workers=workers, scheduler=scheduler, reuse=reuse))
 
 
-def loads(model, only=None):
+def loads(model, only=None, shapers=()):
     """Dynamic factors of EN 13001-2 from simulations of the crane (a model, a transient
     scene or a loads scene, ``analysis: {type: loads}``) -> `LoadsResult`, whose
     ``to_dict()`` is ``cranefe loads --json`` (docs/loads.md). only : factor or drive
-    names (``["phi2"]``, ``["trolley_travel"]``) to run just the simulations they need."""
+    names (``["phi2"]``, ``["trolley_travel"]``) to run just the simulations they need.
+    shapers : e.g. ``("ZV", "ZVD")``: every trolley, slewing and luffing move also run
+    shaped, ``to_dict()["shapers"]`` (docs/shaping.md)."""
     from .analysis.loads.analysis import loads as _loads
-    return _loads(_model(model), only=only)
+    return _loads(_model(model), only=only, shapers=shapers)

@@ -29,11 +29,13 @@ from .scene import complete, parse
 ALL = ("phi1", "phi2", "phi3", "phi5", "phi6")
 
 
-def loads(model, only=None):
+def loads(model, only=None, shapers=()):
     """Compute the factors of `model` (a model, a transient scene or a loads scene)
     -> `LoadsResult`. only : names among ALL to compute with the fewest runs (a sweep's
     outputs): phi2 then comes from the declared drive class's speed alone (no curve, no
-    class), phi6 with it.
+    class), phi6 with it. shapers : input shapers (ZV, ZVD, ZVDD, EI) run on every
+    slider and hinge move -> `shapers: {JOINT: {NAME: {residual_sway_deg, move_time_s,
+    ...}}}` beside the unshaped move (docs/shaping.md).
 
     Length: the factors' runs in the order docs/loads.md lists them, each guarded by
     whether it is wanted.
@@ -103,6 +105,8 @@ def loads(model, only=None):
             phi5[move.joint] = _phi5_joint(work, res, spec, move, tr.name, a_max)
     if phi5:
         factors["phi5"] = phi5
+    shaped = {move.joint: joint_move(work, spec, move, shapers=shapers)
+              for move in spec.moves} if shapers else {}
     if "phi6" in want:
         factors["phi6"] = _phi6(factors["phi2"])
     if only is None:
@@ -111,7 +115,7 @@ def loads(model, only=None):
         warnings += [w for w in r.warnings if not w.startswith("modes:")]
     return LoadsResult(model.name, model.scene, file, spec, ratio, factors,
                        tuple(traces), tuple(spec.assumed), tuple(dict.fromkeys(warnings)),
-                       {"total": time.perf_counter() - t0})
+                       {"total": time.perf_counter() - t0}, shapers=shaped)
 
 
 # ----------------------------------------------------------------------- phi2

@@ -23,6 +23,10 @@ def _clean(x):
     return x
 
 
+def _deg(x):
+    return "      --" if x is None else f"{x:8.4f}"
+
+
 @dataclass
 class LoadsResult:
     """Dynamic factors of EN 13001-2 computed from simulations of one crane."""
@@ -39,6 +43,7 @@ class LoadsResult:
     timings: dict = field(default_factory=dict)
     status: int = 0
     message: str = "ok"
+    shapers: dict = field(default_factory=dict)   # JOINT -> {NAME: {...}} (--shapers)
 
     def to_dict(self):
         """The JSON document of ``cranefe loads --json``."""
@@ -51,6 +56,7 @@ class LoadsResult:
             "working_point": {"radius_m": s.radius, "radius_nodes": list(s.radius_nodes),
                               "hook_height_m": s.hook_height},
             "factors": self.factors,
+            **({"shapers": self.shapers} if self.shapers else {}),
             "simulations": [t.to_dict() for t in self.simulations],
             "assumed": list(self.assumed), "warnings": list(self.warnings),
             "timings_s": timings(self.timings), "status": self.status,
@@ -101,6 +107,10 @@ class LoadsResult:
             st = "" if std is None else (f"{std:11.4f}" if isinstance(std, float)
                                          else f"{std:>11}")
             lines.append(f"  {name:<10} {case:<34} {v:>9} {st:>11}  {src}")
+        for joint, rows in self.shapers.items():
+            lines.append(f"  shapers on the {joint} move: residual sway, move time")
+            lines += [f"    {k:<9} {_deg(r['residual_sway_deg'])} deg  "
+                      f"{r['move_time_s']:8.3f} s" for k, r in rows.items()]
         lines += [f"  assumed: {a}" for a in self.assumed]
         lines += [f"  warning: {w}" for w in self.warnings]
         return "\n".join(lines)

@@ -219,9 +219,11 @@ def release(model, spec):
                                time.perf_counter() - t0)
 
 
-def joint_move(model, spec, move, output_step=0.01):
+def joint_move(model, spec, move, output_step=0.01, shapers=()):
     """A jerk-limited move (s-curve; trapezoid for jerk 0) of one slider or hinge on the
-    operation engine (sway on, no damping): -> (OperationResult, Trace, a_max)."""
+    operation engine (sway on, no damping): -> (OperationResult, Trace, a_max); with
+    `shapers` (ZV, ZVD, ...): the move unshaped and shaped by each, frequency from the
+    crane's own modes -> {NAME: {residual_sway_deg, move_time_s, ...}}."""
     import time
     from ...analysis.operation.integrate import simulate
     t0 = time.perf_counter()
@@ -245,6 +247,9 @@ def joint_move(model, spec, move, output_step=0.01):
         a["tolerance"] = spec.tolerance
     m = replace(model.with_effects(sway=True, damping="none"), analysis=a,
                 scene=f"loads: {move.joint} move")
+    if shapers:             # the same move once per shaper (analysis/shaping/engine.py)
+        from ..shaping.engine import compare
+        return compare(m, move.joint, kinds=("unshaped",) + tuple(shapers))["shapers"]
     res = simulate(m)
     params = {"joint": move.joint, "kind": move.kind, "profile": prof,
               "tolerance": spec.tolerance, "output_step_s": output_step,
