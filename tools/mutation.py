@@ -82,6 +82,7 @@ PRESETS = {
     # branches (linear steps, slack/taut events, lift-off, motors' Newton loop)
     "newmark": ("cranefe/analysis/transient/newmark.py",
                 ["tests/test_mutation_kills_newmark.py",
+                 "tests/test_mutation_kills_newmark_landing.py",
                  "tests/test_transient.py::test_step_torque_against_the_closed_form",
                  "tests/test_transient.py::test_lift_off_at_constant_hauling_speed",
                  "tests/test_transient.py::test_slack_rope_retensioned_against_the_closed_form",
