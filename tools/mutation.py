@@ -92,7 +92,8 @@ PRESETS = {
     # value test and the kill test reach every quantity of energy.py in a few seconds
     "luffing_energy": ("cranefe/analysis/luffing/energy.py",
                        ["tests/test_values.py::test_portal_crane_reduced_inertia_from_an_independent_linkage",
-                        "tests/test_mutation_kills_luffing.py"]),
+                        "tests/test_mutation_kills_luffing.py",
+                        "tests/test_mutation_kills_luffing_own_axis.py"]),
     "luffing_kinematics": ("cranefe/analysis/luffing/kinematics.py",
                            ["tests/test_values.py::test_portal_crane_reduced_inertia_from_an_independent_linkage",
                             "tests/test_mutation_kills_luffing.py"]),
