@@ -11,27 +11,30 @@ C(alpha) = O + R(d) (C_0 - O), W(alpha) = G + R(t_r) (W_0 - G), s = |C - W|; ds 
 by mpmath's differentiation at 30 digits.
 """
 
-import os
+from pathlib import Path
 
 import mpmath as mp
 import numpy as np
 import pytest
 import yaml
+from test_values import ROOT, _portal_linkage
 
 from cranefe.analysis.luffing.analysis import Luffing, read_scene
 from cranefe.model import load
 
-from test_values import ROOT, _portal_linkage
+
+def _read(name):
+    return yaml.safe_load(Path(ROOT, "models", name).read_text())
 
 
 @pytest.mark.parametrize("deg", [55.0])
 def test_drive_between_two_moving_bodies(tmp_path, deg):
     """s, ds, dds to 1e-9 (absolute for s, metres: Newton closes the loops to 1e-13 m;
     relative for the derivatives, as the portal crane's kill test)."""
-    doc = yaml.safe_load(open(os.path.join(ROOT, "models", "portal_crane_luffing.yaml")))
+    doc = _read("portal_crane_luffing.yaml")
     doc["linear_drives"]["luffing"]["nodes"] = ["W", "C"]
     (tmp_path / "model.yaml").write_text(yaml.safe_dump(doc, sort_keys=False))
-    sd = yaml.safe_load(open(os.path.join(ROOT, "models", "portal_crane_luffing_scene.yaml")))
+    sd = _read("portal_crane_luffing_scene.yaml")
     sd["model"] = str(tmp_path / "model.yaml")
     (scene := tmp_path / "scene.yaml").write_text(yaml.safe_dump(sd, sort_keys=False))
     model = load(scene)
@@ -39,7 +42,7 @@ def test_drive_between_two_moving_bodies(tmp_path, deg):
         np.radians([deg]))
     mp.mp.dps = 30
     pose, _, alpha0_deg = _portal_linkage()
-    vec = lambda p: mp.matrix([mp.mpf(str(p[0])), mp.mpf(str(p[2]))])   # noqa: E731
+    vec = lambda p: mp.matrix([mp.mpf(str(p[0])), mp.mpf(str(p[2]))])
     O, C0 = vec(doc["nodes"]["O"]), vec(doc["nodes"]["C"])
 
     def s(t):

@@ -21,34 +21,36 @@ hand (tests/test_mutation_kills_luffing.py `_hand`) change only by the point mas
   a constant of the reference geometry (I_jib = 2.7e5, m_j = 9000, c_j the jib's com).
 """
 
-import os
+from pathlib import Path
 
 import mpmath as mp
 import numpy as np
 import pytest
 import yaml
+from test_mutation_kills_luffing import _hand
+from test_values import ROOT, _portal_linkage
 
 from cranefe.analysis.luffing.analysis import Luffing, read_scene
 from cranefe.model import load
 
-from test_mutation_kills_luffing import _hand
-from test_values import ROOT, _portal_linkage
-
 M_P, I_P = 1200, 400
 
 
+def _read(name):
+    return yaml.safe_load(Path(ROOT, "models", name).read_text())
+
+
 def _reduced(tmp_path):
-    doc = yaml.safe_load(open(os.path.join(ROOT, "models", "portal_crane_luffing.yaml")))
+    doc = _read("portal_crane_luffing.yaml")
     bodies = doc["bodies"]
     doc["bodies"] = {"rod": bodies.pop("rod"), **bodies}           # massless body first
     for j in doc["joints"]:
         if j["at"] == "G":
             j["type"] = "ball"                                     # ball joint to ground
     doc["masses"]["D"] = {"mass": M_P, "inertia": I_P}             # point mass on the jib
-    assert list(doc["bodies"])[0] == "rod" and doc["bodies"]["rod"]["mass"] == 0
+    assert next(iter(doc["bodies"])) == "rod" and doc["bodies"]["rod"]["mass"] == 0
     (tmp_path / "model.yaml").write_text(yaml.safe_dump(doc, sort_keys=False))
-    scene_doc = yaml.safe_load(open(os.path.join(ROOT, "models",
-                                                 "portal_crane_luffing_scene.yaml")))
+    scene_doc = _read("portal_crane_luffing_scene.yaml")
     scene_doc["model"] = str(tmp_path / "model.yaml")
     (scene := tmp_path / "scene.yaml").write_text(yaml.safe_dump(scene_doc, sort_keys=False))
     model = load(scene)
@@ -61,8 +63,8 @@ def test_own_axis_inertia_of_a_linkage_unlike_the_portal_crane(tmp_path, deg):
     at 30 digits against the code's Jacobian solves closed to 1e-13)."""
     mp.mp.dps = 30
     pose, _, _ = _portal_linkage()
-    doc = yaml.safe_load(open(os.path.join(ROOT, "models", "portal_crane_luffing.yaml")))
-    vec = lambda v: mp.matrix([mp.mpf(str(v[0])), mp.mpf(str(v[2]))])   # noqa: E731
+    doc = _read("portal_crane_luffing.yaml")
+    vec = lambda v: mp.matrix([mp.mpf(str(v[0])), mp.mpf(str(v[2]))])
     cj, D0 = vec(doc["bodies"]["jib"]["com"]), vec(doc["nodes"]["D"])
     mj, Ij = mp.mpf(doc["bodies"]["jib"]["mass"]), mp.mpf(doc["bodies"]["jib"]["inertia"])
     I_own = Ij + I_P + mj * M_P / (mj + M_P) * ((D0 - cj)[0]**2 + (D0 - cj)[1]**2)

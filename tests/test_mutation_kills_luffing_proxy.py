@@ -16,13 +16,11 @@ the degree is the first whose tail is below tol (capped one doubling earlier, it
 import os
 
 import numpy as np
-import pytest
+from test_values import ROOT
 
 from cranefe.analysis.luffing.analysis import Luffing, read_scene
 from cranefe.analysis.luffing.energy import Proxy
 from cranefe.model import load
-
-from test_values import ROOT
 
 
 def test_proxy_interpolates_the_reduced_quantities():
