@@ -510,7 +510,8 @@ def _joints(data, c):
             r.fail(f"{e}.axis", f"a {j['type']} joint has no axis; remove it")
         jname = r.name(j["name"], f"{e}.name") if "name" in j else None
         joints.append(Joint(j["type"], (b1, b2), at, axis, e, jname,
-                            _joint_range(j, e, r)))
+                            _joint_range(j, e, r),
+                            "range_deg" if "range_deg" in j else "range"))
 
     named = [j.name for j in joints if j.name is not None]
     for k, j in enumerate(joints):

@@ -53,11 +53,17 @@ class Joint:
     entry: str               # "joints[3]" for messages
     name: str = None         # optional name (operation scenes drive joints by name)
     range: np.ndarray = None  # (2,) travel from the reference: m (slider), rad (hinge)
+    range_key: str = "range"  # how the file gives it: range | range_deg (for messages)
 
     @property
     def label(self):
         """The joint in messages: its name and entry (``'luffing' (joints[0])``)."""
         return f"'{self.name}' ({self.entry})" if self.name else self.entry
+
+    @property
+    def range_entry(self):
+        """The entry of its range in the model file (``joints[2].range_deg``)."""
+        return f"{self.entry}.{self.range_key}"
 
 
 @dataclass(frozen=True)

@@ -69,19 +69,3 @@ def joint_jacobian(parent, hinge, K, K2, point, axis, sign, s):
         return Rq, -Rq @ point, Rqq, -Rqq @ point
     Z = np.zeros((3, 3))
     return Z, sign * (Rp @ axis), Z, np.zeros(3)
-
-
-def range_entry(model, j):
-    """Where the joint's range is written in the model file: range or range_deg (read
-    back from the file: only called for a message)."""
-    if j.type == "hinge":
-        try:
-            import yaml
-            with open(model.file, encoding="utf-8") as fh:
-                joints = yaml.safe_load(fh).get("joints")
-            k = int(j.entry.split("[")[1].rstrip("]"))
-            if "range_deg" in joints[k]:
-                return f"{j.entry}.range_deg"
-        except Exception:          # noqa: BLE001 - a message detail only
-            return f"{j.entry}.range or range_deg"
-    return f"{j.entry}.range"

@@ -191,7 +191,6 @@ class LinkageDrive:
         following the drive's length through the run as the integrator does (times of
         the profile's breakpoints and 400 in between: the turn is monotonic in the
         length between dead points, whose extremes are at breakpoints or rests)."""
-        from .joints import range_entry
         ranged = [k for k in sorted(self.joints) if self.model.joints[k].type == "hinge"
                   and self.model.joints[k].range is not None]
         if not ranged:
@@ -226,6 +225,6 @@ class LinkageDrive:
                     f"the linear drive '{self.drive.name}' turns {j.label} over "
                     f"[{lo * f + 0.0:.6g}, {hi * f + 0.0:.6g}] deg within {ts[n - 1]:g} s, "
                     f"past the end of its range [{j.range[0] * f:g}, {j.range[1] * f:g}] deg "
-                    f"({self.model.file}, {range_entry(self.model, j)}); shorten the stroke "
+                    f"({self.model.file}, {j.range_entry}); shorten the stroke "
                     "or extend the range", file, f"{self.drive.entry}.profile")
 

@@ -15,7 +15,6 @@ from ...model import units
 from ...model.load import _Reader
 from ..transient.scene import Motor, Profile, _motor, _profile
 from . import profiles
-from .joints import range_entry
 
 KEYS = {"type", "duration", "tolerance", "max_step", "output_step", "drives", "initial"}
 DEFAULT_TOLERANCE = 1e-7       # local error per step, relative to the model's size
@@ -399,7 +398,7 @@ def _check_travel(model, r, d, duration):
             r.fail(e, f"the drive moves {j.label} over [{lo * f:.6g}, {hi * f:.6g}]"
                    f" {u} within {duration:g} s, past the end of its range "
                    f"[{j.range[0] * f:g}, {j.range[1] * f:g}] {u} ({model.file}, "
-                   f"{range_entry(model, j)}); shorten the move or extend the range")
+                   f"{j.range_entry}); shorten the move or extend the range")
         return
     drum = model.drums[d.index]
     rates = _rope_rate(model, d.index)
