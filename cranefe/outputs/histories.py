@@ -3,7 +3,6 @@ transient run, each body's centre-of-mass displacement and small rotation recove
 the generalised coordinates (u = T q), also plotted; of an operation run, each body's
 centre-of-mass position and rotation vector as its joints move it."""
 
-import csv
 import os
 
 import numpy as np
@@ -41,23 +40,12 @@ def write_transient_csv(path, result, model, dofs):
     drums, point masses, ground forces) followed by six columns per body:
     body_NAME_ux_m, _uy_m, _uz_m (centre of mass) and body_NAME_rx_rad, _ry_rad, _rz_rad;
     written atomically. Returns the path."""
-    import tempfile
-
     from ..analysis.transient.output import write_csv
-    from ..outpaths import atomic
     if not model.bodies:
         return write_csv(path, result)
     u, r = body_histories(dofs, result.q)
-    with tempfile.TemporaryDirectory() as d:
-        with open(write_csv(os.path.join(d, "base.csv"), result), newline="") as fh:
-            rows = list(csv.reader(fh))
     extra = np.concatenate([u, r], axis=2).reshape(len(result.q), -1)  # body-major
-    with atomic(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(rows[0] + body_columns(model))
-        for row, x in zip(rows[1:], extra):
-            w.writerow(row + [f"{v:.9g}" for v in x])
-    return path
+    return write_csv(path, result, (body_columns(model), extra))
 
 
 def plot_bodies(folder, result, model, dofs):
@@ -120,24 +108,13 @@ def write_operation_csv(path, result, model):
     """The operation CSV (`analysis.operation.output.write_csv`) followed by six columns
     per body: body_BODY.x_m, .y_m, .z_m (its centre of mass) and body_BODY.rx_rad, .ry_rad,
     .rz_rad (its rotation vector); written atomically. Returns the path."""
-    import tempfile
-
     from ..analysis.operation.output import write_csv
-    from ..outpaths import atomic
     if not model.bodies:
         return write_csv(path, result)
     pos, rot = operation_body_histories(model, result)
-    with tempfile.TemporaryDirectory() as d:
-        with open(write_csv(os.path.join(d, "base.csv"), result), newline="") as fh:
-            rows = list(csv.reader(fh))
     cols = []
     for b in model.bodies:
         cols += [f"body_{b.name}.{a}_m" for a in "xyz"] + \
             [f"body_{b.name}.r{a}_rad" for a in "xyz"]
     extra = np.concatenate([pos, rot], axis=2).reshape(len(result.times), -1)
-    with atomic(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(rows[0] + cols)
-        for row, x in zip(rows[1:], extra):
-            w.writerow(row + [f"{v:.9g}" for v in x])
-    return path
+    return write_csv(path, result, (cols, extra))

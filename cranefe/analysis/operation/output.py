@@ -30,25 +30,27 @@ def table(r):
     return "\n".join(lines)
 
 
-def write_csv(path, r):
+def write_csv(path, r, extra=None):
     """One row per output time: t_s, NODE.x_m/y_m/z_m of every node with a mass,
-    ROPE.force_N, DRIVE.position and DRIVE.speed (issue 16's contract)."""
+    ROPE.force_N, DRIVE.position and DRIVE.speed (issue 16's contract), then the
+    columns of `extra` = (names, values (time, k)) if given (the bodies, outputs/
+    histories.py); written atomically (outpaths)."""
+    from ...outpaths import atomic
     cols = ["t_s"]
     for n in r.mass_names:
         cols += [f"{n}.x_m", f"{n}.y_m", f"{n}.z_m"]
     cols += [f"{n}.force_N" for n in r.rope_names]
     for n in r.drive_names:
         cols += [f"{n}.position", f"{n}.speed"]
-    tmp = f"{path}.{os.getpid()}.tmp"
-    with open(tmp, "w", newline="") as fh:
+    names, more = extra if extra is not None else ((), np.zeros((len(r.times), 0)))
+    with atomic(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(cols)
+        w.writerow(cols + list(names))
         for k, t in enumerate(r.times):
             row = [t] + list(r.mass_position[k].ravel()) + list(r.rope_force[k])
             for d in range(len(r.drive_names)):
                 row += [r.drive_position[k, d], r.drive_speed[k, d]]
-            w.writerow([f"{x:.9g}" for x in row])
-    os.replace(tmp, path)
+            w.writerow([f"{x:.9g}" for x in row + list(more[k])])
     return path
 
 

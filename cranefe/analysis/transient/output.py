@@ -72,9 +72,10 @@ def table(result):
     return "\n".join(lines)
 
 
-def write_csv(path, result):
+def write_csv(path, result, extra=None):
     """Time histories: t, rope forces, drum angle/speed/torque, load displacements and
-    ground forces (written to a temporary file, then renamed)."""
+    ground forces, then the columns of `extra` = (names, values (time, k)) if given (the
+    bodies, outputs/histories.py); written to a temporary file, then renamed."""
     r = result
     from ...outpaths import atomic
     cols = ["t_s"] + [f"rope_{n}_N" for n in r.rope_names]
@@ -83,15 +84,16 @@ def write_csv(path, result):
     for n in r.load_names:
         cols += [f"{n}_u{a}_m" for a in "xyz"]
     cols += [f"ground_{n}_N" for n in r.ground_names]
+    names, more = extra if extra is not None else ((), np.zeros((len(r.times), 0)))
     with atomic(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(cols)
+        w.writerow(cols + list(names))
         for k, t in enumerate(r.times):
             row = [t] + list(r.rope_force[k])
             for d in range(len(r.drum_names)):
                 row += [r.drum_angle[k, d], r.drum_speed[k, d], r.drum_torque[k, d]]
             row += list(r.load_displacement[k].ravel()) + list(r.ground_force[k])
-            w.writerow([f"{x:.9g}" for x in row])
+            w.writerow([f"{x:.9g}" for x in row + list(more[k])])
     return path
 
 
