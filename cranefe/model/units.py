@@ -164,6 +164,18 @@ def _drum_radius(entry, unit, drums):
     return None
 
 
+def what(text, entry, file):
+    """What the quantity `text` is, in the words of messages ('a length', 'a force',
+    ...), or None if it cannot be read."""
+    for u, name in _NAMES:
+        try:
+            convert(text, entry, file, unit=u)
+        except ModelError:
+            continue
+        return name
+    return None
+
+
 def _finite(v, text, entry, file):
     v = float(v)
     if not math.isfinite(v):

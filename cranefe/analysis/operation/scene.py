@@ -293,13 +293,8 @@ def _value(r, v, e, key, target, radius=None, scale=1.0, **kw):
             continue
         found = _WHAT[(u.split("/")[0] if "/" in u else u, k)]
         break
-    for u, name in () if found else units._NAMES:     # what else it is, for the message
-        try:
-            units.convert(v, e, r.file, unit=u)
-        except ModelError:
-            continue
-        found = name
-        break
+    if found is None:                   # what else it is, for the message
+        found = units.what(v, e, r.file)
     if found is None:
         raise first
     need = _WHAT[("m" if metres else "rad", order)]
