@@ -290,24 +290,28 @@ class JointChain:
         pw = []
         for b, m, s, Th, proj, energy in self.sets:
             R0, p0, R1, p1, R2, p2, R3, p3, A0, vel = per[b]
-            X1 = (R1[:nJ], p1[:nJ])
-            X2 = (R2[:nJ, :nJ].reshape(-1, 3, 3), p2[:nJ, :nJ].reshape(-1, 3))
-            A0f = (A0[0][None], A0[1][None])
-            Xv = (2 * np.einsum("kbij,b->kij", R2[:nJ], w),
-                  2 * np.einsum("kbi,b->ki", p2[:nJ], w))
-            A0k = (np.einsum("abkij,a,b->kij", R3[:, :, :nJ], w, w),
-                   np.einsum("abki,a,b->ki", p3[:, :, :nJ], w, w))
-            xt = (R1[nJ][None], p1[nJ][None])
+            # fields: x_i (nJ), x''_0, d x''_0 / du'_k (nJ), d x''_0 / du_k (nJ),
+            # x_t; and x_ik (nJ^2)
+            BR = np.concatenate([R1[:nJ], A0[0][None],
+                                 2 * np.einsum("kbij,b->kij", R2[:nJ], w),
+                                 np.einsum("abkij,a,b->kij", R3[:, :, :nJ], w, w),
+                                 R1[nJ][None]])
+            Bp = np.concatenate([p1[:nJ], A0[1][None],
+                                 2 * np.einsum("kbi,b->ki", p2[:nJ], w),
+                                 np.einsum("abki,a,b->ki", p3[:, :, :nJ], w, w),
+                                 p1[nJ][None]])
+            X2R, X2p = R2[:nJ, :nJ].reshape(-1, 3, 3), p2[:nJ, :nJ].reshape(-1, 3)
             if proj is not None:
-                X1, X2, A0f, Xv, A0k, xt = [(proj @ A, a @ proj.T) for A, a in
-                                            (X1, X2, A0f, Xv, A0k, xt)]
-            M += gram(*X1, *X1, m, s, Th)
-            F -= gram(*X1, *A0f, m, s, Th)[:, 0]
+                BR, Bp = proj @ BR, Bp @ proj.T
+                X2R, X2p = proj @ X2R, X2p @ proj.T
+            G1 = gram(BR[:nJ], Bp[:nJ], BR, Bp, m, s, Th)     # x_i . every field
+            M += G1[:, :nJ]
+            F -= G1[:, nJ]
             if tangent:
-                C += gram(*X1, *Xv, m, s, Th)
-                K += gram(*X2, *A0f, m, s, Th)[:, 0].reshape(nJ, nJ) \
-                    + gram(*X1, *A0k, m, s, Th)
-                G = gram(*X2, *X1, m, s, Th).reshape(nJ, nJ, nJ)     # [i, k, j]
+                C += G1[:, nJ + 1:2 * nJ + 1]
+                G2 = gram(X2R, X2p, BR[:nJ + 1], Bp[:nJ + 1], m, s, Th)
+                K += G2[:, nJ].reshape(nJ, nJ) + G1[:, 2 * nJ + 1:3 * nJ + 1]
+                G = G2[:, :nJ].reshape(nJ, nJ, nJ)                 # [i, k, j]
                 dM += G.transpose(0, 2, 1) + G.transpose(2, 0, 1)
             if proj is None:
                 fg = g @ R1[:nJ] @ s + m * (p1[:nJ] @ g)
@@ -318,8 +322,9 @@ class JointChain:
             if energy:
                 T += 0.5 * pair(*vel, *vel, m, s, Th)
                 Vg -= float(g @ (R0 @ s + m * p0))
-            if np.any(xt[0]) or np.any(xt[1]):
-                pw.append((X1, A0f, xt, m, s, Th, proj is None))
+            if BR[-1].any() or Bp[-1].any():
+                pw.append(((BR[:nJ], Bp[:nJ]), (BR[nJ:nJ + 1], Bp[nJ:nJ + 1]),
+                           (BR[-1:], Bp[-1:]), m, s, Th, proj is None))
         groups = []
         for b, idx, Xr, proj in self.groups_spec:
             R0, p0, R1, p1, R2, p2, R3, p3, A0, vel = per[b]

@@ -670,11 +670,27 @@ class Mechanism:
         X, V, _, th = self.kinematics(t) if kin is None else kin
         X, V = X.copy(), V.copy()
         if self.nJ:
-            jm = self.joint_motions(t, q, v, tangent=False) if jm is None else jm
-            for idx, Xg, Vg, _, _, own in jm.groups:
-                if own:
-                    X[idx] = Xg
-                    V[idx] = Vg
+            if jm is None:
+                # positions and velocities only: the bodies' motions with u'' = 0
+                states, c = [], 0
+                for d in self._chain_drives:
+                    if d.coordinate:
+                        r = self.jc[c]["rho"]
+                        states.append((q[self.nc + c] / r, v[self.nc + c] / r, 0.0))
+                        c += 1
+                    else:
+                        states.append(d.motion(t))
+                mot = self.body_motions(t, states)
+                for b, idx, Xr, proj in self.chain.groups_spec:
+                    if proj is None:
+                        R, dR, _, p, dp, _ = mot[b]
+                        X[idx] = Xr @ R.T + p
+                        V[idx] = Xr @ dR.T + dp
+            else:
+                for idx, Xg, Vg, _, _, own in jm.groups:
+                    if own:
+                        X[idx] = Xg
+                        V[idx] = Vg
         nf = len(self.free)
         if nf:
             P = (self.E @ q[:self.nc]).reshape(nf, 3)
