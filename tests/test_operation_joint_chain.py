@@ -69,9 +69,9 @@ def test_torque_free_slewing_with_the_trolley_running_out_keeps_angular_momentum
     phi = w0 J(r0) / (v sqrt(A m)) (atan(k r) - atan(k r0)). The speed halves over the
     20 s. The trapezoidal rule's global error falls as h^2 (measured, speed / w0, angle,
     energy: 1.0e-6, 2.1e-6 rad, 9.5e-7 at tolerance 1e-9; 2.2e-7, 4.7e-7, 2.1e-7 at
-    1e-10; 5.0e-8, 1.0e-7, 4.8e-8 at 1e-11): asserted at 1e-11 with a factor 2."""
+    1e-10; 5.0e-8, 1.0e-7, 4.8e-8 at 1e-11): asserted at 1e-10 with a factor 2."""
     v, w0, c = 1.5, 0.2, 0.0
-    path = scene(tmp_path, ARM, "  duration: 20\n  tolerance: 1.0e-11\n  drives:\n"
+    path = scene(tmp_path, ARM, "  duration: 20\n  tolerance: 1.0e-10\n  drives:\n"
                  "    s: {hinge: slew, torque: 0}\n"
                  f"    t: {{slider: travel, profile: {{type: table, speed: [[0, {v}]]}}}}\n",
                  C_Y=c)
@@ -86,13 +86,13 @@ def test_torque_free_slewing_with_the_trolley_running_out_keeps_angular_momentum
     k = np.sqrt(M_T / A)
     phi = w0 * Jr[0] / (v * np.sqrt(A * M_T)) * (np.arctan(k * r) - np.arctan(k * 10))
     i = res.drive_names.index("s")
-    np.testing.assert_allclose(res.drive_speed[:, i], w, atol=1e-7 * w0)
-    np.testing.assert_allclose(res.drive_position[:, i], phi, atol=2e-7)
+    np.testing.assert_allclose(res.drive_speed[:, i], w, atol=5e-7 * w0)
+    np.testing.assert_allclose(res.drive_position[:, i], phi, atol=1e-6)
     assert w[-1] < 0.55 * w0
     assert res.drive_position[:, res.drive_names.index("t")][-1] == pytest.approx(v * 20)
     # the energy balance: the profile's power on the trolley int (x'' - g) . x_t dm
     # feeds the kinetic energy the slewing loses (J w^2 / 2 falls as 1 / J)
-    assert res.energy_error < 1e-7
+    assert res.energy_error < 5e-7
 
 
 def lagrange_arm(t_end, M, F, c, y0, t_eval):

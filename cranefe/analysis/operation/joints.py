@@ -12,7 +12,8 @@ inertia as a body of zero size). Integrals of two affine fields over a set are t
 
     int (A X + a) . (B X + b) dm = tr(A Theta B^T) + a . (B s) + b . (A s) + m a . b
 
-(`gram`), exact at any angle.
+(`pair`; in JointChain the quadratic form of the flattened maps [R | p]), exact at
+any angle.
 
 The maps (R, p) are composed along the tree of bodies as truncated Taylor series ("jets")
 in z = (u_1 .. u_n, t) about the current (u, t), to third order: a joint's own map is a
@@ -73,18 +74,11 @@ def pair(A, a, B, b, m, s, Th):
                  + m * (a @ b))
 
 
-def gram(A, a, B, b, m, s, Th):
-    """`pair` of every field of (A (na, 3, 3), a (na, 3)) with every one of (B, b):
-    (na, nb)."""
-    return (np.einsum("aij,jl,bil->ab", A, Th, B) + a @ (B @ s).T + (A @ s) @ b.T
-            + m * (a @ b.T))
-
-
 class Jets:
-    """Index tables of truncated Taylor series in nz variables up to ORDER: monomials,
-    the product's pairs (all, and those with a pure power of one variable on the
-    right: a joint's own series), and the maps from coefficients to the partial
-    derivatives of order 1, 2, 3."""
+    """Truncated Taylor series in nz variables up to ORDER of affine maps [R | p]
+    (3 x 4, acting on (X, 1)): the monomials, the product's pairs (all, and those with a
+    pure power of one variable on the right: a joint's own series), and the maps from
+    coefficients to the partial derivatives of order 1, 2, 3."""
 
     def __init__(self, nz):
         self.nz = nz
@@ -102,7 +96,6 @@ class Jets:
             S = np.zeros((nm, len(ps)))
             S[[p[2] for p in ps], np.arange(len(ps))] = 1.0
             return ia, ib, S
-        self.full = table(pairs)
         # pure powers n e_k of one variable (n = 0..ORDER)
         self.uni = [[idx[tuple(n if i == k else 0 for i in range(nz))]
                      for n in range(ORDER + 1)] for k in range(nz)]
@@ -111,50 +104,41 @@ class Jets:
 
         def deriv(order):
             shape = (nz,) * order
-            I = np.zeros(shape, dtype=int)
+            Ix = np.zeros(shape, dtype=int)
             F = np.zeros(shape)
             for ks in product(range(nz), repeat=order):
                 e = [0] * nz
                 for k in ks:
                     e[k] += 1
-                I[ks] = idx[tuple(e)]
+                Ix[ks] = idx[tuple(e)]
                 F[ks] = _fact(e)
-            return I, F
-        self.d1 = deriv(1)
-        self.d2 = deriv(2)
-        self.d3 = deriv(3)
-
-    def constant(self, R, p):
-        Rj = np.zeros((self.nm, 3, 3))
-        pj = np.zeros((self.nm, 3))
-        Rj[0], pj[0] = R, p
-        return Rj, pj
+            return Ix, F[..., None]
+        self.d = [deriv(1), deriv(2), deriv(3)]
+        self.ident = np.zeros((nm, 3, 4))
+        self.ident[0, :, :3] = np.eye(3)
 
     def univariate(self, k, Rc, pc):
-        """A joint's series in variable k: coefficients Rc (ORDER+1, 3, 3), pc."""
-        Rj = np.zeros((self.nm, 3, 3))
-        pj = np.zeros((self.nm, 3))
-        Rj[self.uni[k]] = Rc
-        pj[self.uni[k]] = pc
-        return Rj, pj
+        """A joint's series in variable k, homogeneous (nm, 4, 4): coefficients Rc
+        (ORDER+1, 3, 3), pc (ORDER+1, 3); the constant's last row (0, 0, 0, 1)."""
+        B = np.zeros((self.nm, 4, 4))
+        u = self.uni[k]
+        B[u, :3, :3] = Rc
+        B[u, :3, 3] = pc
+        B[u[0], 3, 3] = 1.0
+        return B
 
     def compose(self, parent, joint, k):
-        """(R_p R_j, R_p p_j + p_p) of the parent's jets and a joint's series in
-        variable k (k None: any series)."""
-        Rp, pp = parent
-        Rj, pj = joint
-        ia, ib, S = self.full if k is None else self.by_var[k]
-        A = Rp[ia]
-        R = (S @ np.einsum("pij,pjk->pik", A, Rj[ib]).reshape(len(ia), 9)).reshape(-1, 3, 3)
-        p = S @ np.einsum("pij,pj->pi", A, pj[ib]) + pp
-        return R, p
+        """The child's [R_p R_j | R_p p_j + p_p] from the parent's series (nm, 3, 4)
+        and a joint's series in variable k (nm, 4, 4)."""
+        ia, ib, S = self.by_var[k]
+        P = np.matmul(parent[ia], joint[ib])
+        return (S @ P.reshape(len(ia), 12)).reshape(-1, 3, 4)
 
-    def derivatives(self, R, p):
-        """((R_a, p_a), (R_ab, p_ab), (R_abc, p_abc)) from the coefficients."""
-        out = []
-        for I, F in (self.d1, self.d2, self.d3):
-            out.append((R[I] * F[..., None, None], p[I] * F[..., None]))
-        return out
+    def derivatives(self, H):
+        """The partial derivatives of order 1, 2, 3 (flattened maps, 12 each) from the
+        coefficients (d^alpha f = alpha! c_alpha)."""
+        Hf = H.reshape(len(H), 12)
+        return [Hf[Ix] * F for Ix, F in self.d]
 
 
 def _fact(e):
@@ -228,19 +212,32 @@ class JointChain:
         off) or None; energy: whether its kinetic and potential energy are counted here.
     groups : [(body, node indices, X_ref (k, 3), proj)] the nodes moving with `body`.
     linear : a LinkageDrive (its bodies' motions in time) or None.
+
+    With maps A = [R | p] flattened to 12 numbers, `pair` is the quadratic form
+    A W B^T with W = kron(I, Theta~) (kron(proj, Theta~) for a projected set),
+    Theta~ = [[Theta, s], [s^T, m]] the homogeneous second moment, and gravity's
+    g . (R s + m p) = A . kron(g, (s, m)).
     """
 
     def __init__(self, chain, rho, sets, groups, g, linear=None):
         self.chain, self.rho = chain, np.asarray(rho, float)
-        self.nJ = nJ = len(rho)
-        self.nz = nJ + 1
+        self.nJ = len(rho)
+        self.nz = self.nJ + 1
         self.jets = Jets(self.nz)
-        self.sets, self.groups_spec, self.g, self.linear = sets, groups, g, linear
-        self.ident = self.jets.constant(np.eye(3), np.zeros(3))
-        self.bodies = sorted({s[0] for s in sets} | {gr[0] for gr in groups})
+        self.sets_spec, self.groups_spec, self.g, self.linear = sets, groups, g, linear
+        self.sets = []
+        for b, m, s, Th, proj, energy in sets:
+            Tt = np.zeros((4, 4))
+            Tt[:3, :3], Tt[:3, 3], Tt[3, :3], Tt[3, 3] = Th, s, s, m
+            W = np.kron(np.eye(3) if proj is None else proj, Tt)
+            gv = np.kron(g, np.append(s, m)) if proj is None else None
+            self.sets.append((b, W, gv, energy))
+        self.groups = [(b, idx, np.hstack([Xr, np.ones((len(Xr), 1))]), proj)
+                       for b, idx, Xr, proj in groups]
+        self.bodies = sorted({x[0] for x in sets} | {x[0] for x in groups})
 
     def motions(self, t, u, left=False):
-        """Jets (R, p) of every body of the chain at (t, u); `left`: the prescribed
+        """Jets (nm, 3, 4) of every body of the chain at (t, u); `left`: the prescribed
         drives' accelerations approached from the left (a step ending at a breakpoint)."""
         J, nz = self.jets, self.nz
         out = {}
@@ -248,10 +245,12 @@ class JointChain:
         for b, p, d, sign, hinge, K, K2, point, axis, c in self.chain:
             if link is not None and b in link:
                 R, dR, ddR, pp, dp, ddp = link[b]
-                out[b] = J.univariate(nz - 1, np.array([R, dR, ddR / 2, 0 * R]),
-                                      np.array([pp, dp, ddp / 2, 0 * pp]))
+                H = np.zeros((J.nm, 3, 4))
+                for n, (Rn, pn) in enumerate(((R, pp), (dR, dp), (ddR / 2, ddp / 2))):
+                    H[J.uni[nz - 1][n], :, :3], H[J.uni[nz - 1][n], :, 3] = Rn, pn
+                out[b] = H
                 continue
-            par = out.get(p, self.ident)
+            par = out.get(p, J.ident)
             if d is None:
                 out[b] = par
                 continue
@@ -262,16 +261,17 @@ class JointChain:
                 e, k = (sign * ds, sign * dds / 2), nz - 1
             fR, fp = hinge_series(K, K2, point, sign * s0) if hinge else \
                 slider_series(axis, sign * s0)
-            jt = J.univariate(k, np.array(series(fR, e)), np.array(series(fp, e)))
-            out[b] = jt if par is self.ident else J.compose(par, jt, k)
+            out[b] = J.compose(par, J.univariate(k, np.array(series(fR, e)),
+                                                 np.array(series(fp, e))), k)
         return out
 
     def state(self, t, u, v, left=False, tangent=True):
         """Mass matrix, generalised forces (Kane's inertia terms and gravity), their
         tangents, energies and the nodes' positions and derivatives at (t, u, u')."""
-        nJ, g = self.nJ, self.g
+        nJ, nz = self.nJ, self.nz
         jets = self.motions(t, u, left)
         w = np.append(np.asarray(v, float), 1.0)
+        ww = np.outer(w, w).ravel()
         st = JointState()
         M = np.zeros((nJ, nJ))
         dM = np.zeros((nJ, nJ, nJ))
@@ -282,62 +282,52 @@ class JointChain:
         T = Vg = 0.0
         per = {}
         for b in self.bodies:
-            R, p = jets[b]
-            (R1, p1), (R2, p2), (R3, p3) = self.jets.derivatives(R, p)
-            A0 = (np.einsum("abij,a,b->ij", R2, w, w), np.einsum("abi,a,b->i", p2, w, w))
-            vel = (np.einsum("aij,a->ij", R1, w), np.einsum("ai,a->i", p1, w))
-            per[b] = (R[0], p[0], R1, p1, R2, p2, R3, p3, A0, vel)
+            H = jets[b]
+            D1, D2, D3 = self.jets.derivatives(H)
+            # fields: x_i (nJ), x''_0, d x''_0 / du'_k (nJ), d x''_0 / du_k (nJ), x_t
+            B = np.concatenate([D1[:nJ], (ww @ D2.reshape(nz * nz, 12))[None],
+                                2 * np.matmul(w, D2[:nJ]),
+                                np.tensordot(ww, D3[:, :, :nJ].reshape(nz * nz, nJ, 12),
+                                             axes=1),
+                                D1[nJ:]])
+            per[b] = (H[0].ravel(), B, D2[:nJ, :nJ].reshape(nJ * nJ, 12), w @ D1)
         pw = []
-        for b, m, s, Th, proj, energy in self.sets:
-            R0, p0, R1, p1, R2, p2, R3, p3, A0, vel = per[b]
-            # fields: x_i (nJ), x''_0, d x''_0 / du'_k (nJ), d x''_0 / du_k (nJ),
-            # x_t; and x_ik (nJ^2)
-            BR = np.concatenate([R1[:nJ], A0[0][None],
-                                 2 * np.einsum("kbij,b->kij", R2[:nJ], w),
-                                 np.einsum("abkij,a,b->kij", R3[:, :, :nJ], w, w),
-                                 R1[nJ][None]])
-            Bp = np.concatenate([p1[:nJ], A0[1][None],
-                                 2 * np.einsum("kbi,b->ki", p2[:nJ], w),
-                                 np.einsum("abki,a,b->ki", p3[:, :, :nJ], w, w),
-                                 p1[nJ][None]])
-            X2R, X2p = R2[:nJ, :nJ].reshape(-1, 3, 3), p2[:nJ, :nJ].reshape(-1, 3)
-            if proj is not None:
-                BR, Bp = proj @ BR, Bp @ proj.T
-                X2R, X2p = proj @ X2R, X2p @ proj.T
-            G1 = gram(BR[:nJ], Bp[:nJ], BR, Bp, m, s, Th)     # x_i . every field
+        for b, W, gv, energy in self.sets:
+            H0, B, X2, vel = per[b]
+            BW = B[:nJ] @ W
+            G1 = BW @ B.T                                   # x_i . every field
             M += G1[:, :nJ]
             F -= G1[:, nJ]
             if tangent:
                 C += G1[:, nJ + 1:2 * nJ + 1]
-                G2 = gram(X2R, X2p, BR[:nJ + 1], Bp[:nJ + 1], m, s, Th)
+                G2 = X2 @ W @ B[:nJ + 1].T                   # x_ik . (x_j, x''_0)
                 K += G2[:, nJ].reshape(nJ, nJ) + G1[:, 2 * nJ + 1:3 * nJ + 1]
-                G = G2[:, :nJ].reshape(nJ, nJ, nJ)                 # [i, k, j]
+                G = G2[:, :nJ].reshape(nJ, nJ, nJ)           # [i, k, j]
                 dM += G.transpose(0, 2, 1) + G.transpose(2, 0, 1)
-            if proj is None:
-                fg = g @ R1[:nJ] @ s + m * (p1[:nJ] @ g)
+            if gv is not None:
+                fg = B[:nJ] @ gv
                 F += fg
                 Fg += fg
                 if tangent:
-                    K -= g @ R2[:nJ, :nJ] @ s + m * (p2[:nJ, :nJ] @ g)
+                    K -= (X2 @ gv).reshape(nJ, nJ)
             if energy:
-                T += 0.5 * pair(*vel, *vel, m, s, Th)
-                Vg -= float(g @ (R0 @ s + m * p0))
-            if BR[-1].any() or Bp[-1].any():
-                pw.append(((BR[:nJ], Bp[:nJ]), (BR[nJ:nJ + 1], Bp[nJ:nJ + 1]),
-                           (BR[-1:], Bp[-1:]), m, s, Th, proj is None))
+                T += 0.5 * float(vel @ W @ vel)
+                Vg -= float(H0 @ gv)
+            if B[-1].any():
+                pw.append((B[:nJ], B[nJ], B[-1], W, gv))
         groups = []
-        for b, idx, Xr, proj in self.groups_spec:
-            R0, p0, R1, p1, R2, p2, R3, p3, A0, vel = per[b]
-            XJ = np.einsum("kj,aij->kia", Xr, R1[:nJ]) + p1[:nJ].T
-            XJJ = np.einsum("kj,abij->kiab", Xr, R2[:nJ, :nJ]) + \
-                p2[:nJ, :nJ].transpose(2, 0, 1)
+        for b, idx, Xh, proj in self.groups:
+            H0, B, X2, vel = per[b]
+            XJ = np.matmul(B[:nJ].reshape(nJ, 3, 4), Xh.T).transpose(2, 1, 0)
+            XJJ = np.matmul(X2.reshape(nJ * nJ, 3, 4), Xh.T).transpose(2, 1, 0) \
+                .reshape(len(idx), 3, nJ, nJ)
             if proj is not None:
                 XJ = np.einsum("ij,kja->kia", proj, XJ)
                 XJJ = np.einsum("ij,kjab->kiab", proj, XJJ)
                 X = V = None
             else:
-                X = Xr @ R0.T + p0
-                V = Xr @ vel[0].T + vel[1]
+                X = Xh @ H0.reshape(3, 4).T
+                V = Xh @ vel.reshape(3, 4).T
             groups.append((idx, X, V, XJ, XJJ, proj is None))
         st.M, st.dM, st.F, st.Fg, st.K, st.C = M, dM, F, Fg, K, C
         st.T, st.Vg, st.groups, st.pw = T, Vg, groups, pw
@@ -348,10 +338,8 @@ class JointChain:
         int (x'' - g) . x_t dm, x_t the velocity with u' held (the carried velocity),
         x'' = x''_0 + sum x_i u''_i with the coordinates' accelerations a."""
         P = 0.0
-        for (XR, Xp), (AR, Ap), (tR, tp), m, s, Th, grav in st.pw:
-            accR = AR[0] + np.einsum("kij,k->ij", XR, a)
-            accp = Ap[0] + a @ Xp
-            P += pair(accR, accp, tR[0], tp[0], m, s, Th)
-            if grav:
-                P -= float(self.g @ (tR[0] @ s + m * tp[0]))
+        for X1, A0, xt, W, gv in st.pw:
+            P += float((A0 + a @ X1) @ W @ xt)
+            if gv is not None:
+                P -= float(xt @ gv)
         return P
