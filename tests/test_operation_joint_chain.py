@@ -6,14 +6,16 @@ order of convergence), a pendulum body on a trolley with a trapezoidal profile (
 carried acceleration's jumps: the reference and the energy error's order), the Newton
 tangent against finite differences, and a load without sway guided by a free trolley."""
 
+from itertools import pairwise
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from cranefe.model import load
 from cranefe.analysis.operation.integrate import Stepper, simulate
 from cranefe.analysis.operation.mechanism import Mechanism
 from cranefe.analysis.operation.scene import parse
+from cranefe.model import load
 
 G = 9.81
 
@@ -76,7 +78,7 @@ def test_torque_free_slewing_with_the_trolley_running_out_keeps_angular_momentum
                  f"    t: {{slider: travel, profile: {{type: table, speed: [[0, {v}]]}}}}\n",
                  C_Y=c)
     model = load(path)
-    mech, init = start(model, [w0])
+    _, init = start(model, [w0])
     res = simulate(model, initial=init)
     t = res.times
     A = J_JIB + I_T + M_T * c**2
@@ -105,7 +107,7 @@ def lagrange_arm(t_end, M, F, c, y0, t_eval):
     A, m = J_JIB + I_T, M_T
 
     def f(_, y):
-        phi, r, w, rd = y
+        _, r, w, rd = y
         Mm = np.array([[A + m * (r * r + c * c), -m * c], [-m * c, m]])
         acc = np.linalg.solve(Mm, [M - 2 * m * r * rd * w, F + m * r * w * w])
         return [w, rd, acc[0], acc[1]]
@@ -157,8 +159,8 @@ joints:
 
 
 @pytest.mark.parametrize("bead", ["{slider: run, force: 0}",
-                                  "{slider: run, profile: {type: trapezoid, distance: 4, "
-                                  "v_max: 2, a_max: 4, start: 0.2}}"])
+                                  ("{slider: run, profile: {type: trapezoid, distance: 4, "
+                                   "v_max: 2, a_max: 4, start: 0.2}}")])
 def test_bead_on_a_swinging_boom_keeps_its_energy_at_order_two(tmp_path, bead):
     """A boom on a horizontal hinge, free (torque 0), and a bead on it, released from
     rest under gravity. (a) The bead free too (force 0): a conservative system with a
@@ -219,10 +221,10 @@ def _pendulum_on_trapezoid(t_eval):
     acc = [0.0, 0.5, 0.0, -0.5, 0.0]
     y = [0.0, 0.0]
     out = np.zeros((2, len(t_eval)))
-    for (a, b), s2 in zip(zip(bps[:-1], bps[1:]), acc):
+    for (a, b), s2 in zip(pairwise(bps), acc):
         sel = (t_eval >= a) & (t_eval <= b)
-        sol = solve_ivp(lambda _, z: [z[1], (m * d * s2 * np.cos(z[0]) - m * G * d *
-                                             np.sin(z[0])) / (m * d * d + I)],
+        sol = solve_ivp(lambda _, z, s2=s2: [z[1], (m * d * s2 * np.cos(z[0]) - m * G * d *
+                                                    np.sin(z[0])) / (m * d * d + I)],
                         (a, b), y, method="DOP853", rtol=1e-12, atol=1e-14,
                         t_eval=t_eval[sel], dense_output=True)
         out[:, sel] = sol.sol(t_eval[sel])
@@ -293,7 +295,7 @@ def test_newton_tangent_equals_finite_differences(tmp_path, left):
     taut = mech.taut0
     t = 1.3
     mech.left_at = t if left else None
-    R0, ev = _residual(mech, st, t, q, v, a, taut)
+    _, ev = _residual(mech, st, t, q, v, a, taut)
     Jq = ev.K.copy()
     jd = st.jd
     Jq[jd, jd] += np.einsum("ijk,j->ik", ev.dMJ, a[jd])

@@ -2,7 +2,8 @@
 
 The trapezoidal rule (Newmark's average acceleration, beta = 1/4, gamma = 1/2) on the
 nonlinear equations `M q'' = F(t, q, q')`, each step solved by Newton's method on the
-analytic tangent `4/h^2 M + 2/h C + K`; the step is chosen from the local error estimate
+analytic tangent `4/h^2 M + 2/h C + K` (M diagonal, or block-diagonal with the joint
+coordinates' dense M_J(u, t) and its derivative dM_J/du u'' in the tangent); the step is chosen from the local error estimate
 of Zienkiewicz & Xie (1991), `e = h^2 / 12 (a1 - a0)` (the position error of the step),
 against `tolerance x model size`, and from the error it makes in each rope's force,
 `EA/L G e` (G = dL/dq), against `FORCE_TOL x tolerance x` the rope's force (the larger

@@ -55,7 +55,7 @@ def subtree_mass(model, bodies, nodes):
         s += b.mass * c
         Th += 0.5 * np.trace(Ic) * I3 - Ic + b.mass * np.outer(c, c)
     ms = model.masses
-    on = set(int(i) for i in nodes)
+    on = {int(i) for i in nodes}
     for k, i in enumerate(ms.nodes):
         if int(i) not in on:
             continue
@@ -197,7 +197,7 @@ def side_motion(motion, t, left=False):
 class JointState:
     """The joint coordinates' terms at one (t, u, u') (JointChain.state)."""
 
-    __slots__ = ("M", "dM", "F", "Fg", "K", "C", "T", "Vg", "groups", "pw")
+    __slots__ = ("C", "F", "Fg", "K", "M", "T", "Vg", "dM", "groups", "pw")
 
 
 class JointChain:

@@ -3,8 +3,9 @@
 Coordinates q: the Cartesian positions of the point masses not carried by bodies (3 each,
 2 in a plane: xz model; with `sway: false` only the height), then the positions of
 joints driven by a torque, force or motor or free (the arc rho phi of a hinge, the
-travel of a slider; the bodies they carry enter by their exact kinetic energy,
-joints.py), then the angles of drums driven by a torque or a motor. A linear drive
+travel of a slider; the bodies they carry, with any joints moving below them, enter by
+their exact kinetic energy: a configuration- and time-dependent block M_J of the mass
+matrix, joints.JointChain), then the angles of drums driven by a torque or a motor. A linear drive
 moves its planar linkage kinematically (linkage.py). Bodies move rigidly by the prescribed joint motions
 (exact rotations, `cranefe.elements.hinge_motion`); a prescribed drum's angle is a known function
 of time; every other joint and drum is held. Ropes and axial springs that touch a
@@ -575,6 +576,14 @@ class Mechanism:
             C[i, i] -= dtq / r ** 2
         return jt
 
+    def mass_matrix(self, ev):
+        """The dense mass matrix (n, n) at the state of `ev`: the loads' and drums'
+        constant diagonal and the joint coordinates' block M_J(u, t) (ev.MJ)."""
+        M = np.diag(self.M)
+        if self.nJ:
+            M[self.nc:self.nx, self.nc:self.nx] = ev.MJ
+        return M
+
     def joint_accel(self, ev):
         """The joint coordinates' accelerations M_J^-1 F_J of an evaluated state (the
         loads are decoupled from them in the mass matrix)."""
@@ -595,7 +604,7 @@ class Mechanism:
     def _joint_energy(self, ev):
         """Kinetic energy 1/2 int |x'|^2 dm and gravity potential -g . int x dm of the
         bodies the joint coordinates carry (with the motors' rotors)."""
-        js, _, q, v = ev._ctx[4]
+        js, _, _, v = ev._ctx[4]
         T = js.T
         for c, jc in enumerate(self.jc):
             d = jc["drive"]
