@@ -324,7 +324,7 @@ class Mechanism:
                         stack.append(c)
             nodes = np.array([i for i in range(self.nn) if self.carrier[i] in sub],
                              dtype=int)
-            m, s1, Th = subtree_mass(model, sorted(sub), nodes)
+            m = subtree_mass(model, sorted(sub), nodes)[0]
             hinge = j.type == "hinge"
             a = np.asarray(model.coords[j.at], float)
             pts = [model.coords[i] for i in nodes] + [model.bodies[x].com for x in sub
@@ -341,12 +341,11 @@ class Mechanism:
                                  "the bodies it carries have no mass; give them mass "
                                  "(bodies.NAME.mass) or prescribe a profile",
                                  model.scene_file or model.file, d.entry)
-            self.jc.append(dict(drive=d, joint=k, child=b, parent=p, hinge=hinge,
-                                nodes=nodes, Xr=model.coords[nodes], m=m, s=s1, Th=Th,
-                                rho=rho, sign=1.0 if j.bodies[1] == b else -1.0,
-                                chain=None))
+            self.jc.append({"drive": d, "joint": k, "child": b, "parent": p,
+                            "hinge": hinge, "nodes": nodes, "rho": rho,
+                            "sign": 1.0 if j.bodies[1] == b else -1.0})
         self.nJ = len(self.jc)
-        self.jnodes = set(int(i) for c in self.jc for i in c["nodes"])
+        self.jnodes = {int(i) for c in self.jc for i in c["nodes"]}
 
     def _elements(self, model):
         """Ropes and axial springs that touch a point mass (the others join bodies whose
@@ -750,12 +749,6 @@ class Mechanism:
         self.Fg = np.concatenate([self.E.T @ (np.repeat(self.free_mass, 3) *
                                               np.tile(self.g, nf)), np.zeros(self.nJ)])
         self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
-        coords = self.model.coords
-        for jc in self.jc:
-            on = np.isin(self.span_b, jc["nodes"]), np.isin(self.span_a, jc["nodes"])
-            jc["span_ends"] = [(np.flatnonzero(m), coords[ends[m]], sg) for m, ends, sg in
-                               ((on[0], self.span_b, 1.0), (on[1], self.span_a, -1.0))
-                               if m.any()]
 
     def evaluate(self, t, q, v, taut, kin=None, damping=True, powers=True):
         """Forces and tangents at (t, q, v); with powers=False the power terms of the
@@ -881,7 +874,7 @@ class Mechanism:
         """Fill the power terms of `ev` (W) and the guided loads' kinetic energy (J)."""
         if ev.P_drive is not None:
             return ev
-        fe, lam, taut, spring, (jm, XJ, q, v) = ev._ctx
+        fe, lam, taut, spring, (jm, _, q, v) = ev._ctx
         S, Sd, V, omega, Rd = ev.S, ev.Sd, ev.V, ev.omega, self.Rd
         # energy carried onto (off) the drums with the wound rope: the drum's work
         # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
