@@ -2,7 +2,8 @@
 
 The trapezoidal rule (Newmark's average acceleration, beta = 1/4, gamma = 1/2) on the
 nonlinear equations `M q'' = F(t, q, q')`, each step solved by Newton's method on the
-analytic tangent `4/h^2 M + 2/h C + K`; the step is chosen from the local error estimate
+analytic tangent `4/h^2 M + 2/h C + K` (M diagonal, or block-diagonal with the joint
+coordinates' dense M_J(u, t) and its derivative dM_J/du u'' in the tangent); the step is chosen from the local error estimate
 of Zienkiewicz & Xie (1991), `e = h^2 / 12 (a1 - a0)` (the position error of the step),
 against `tolerance x model size`, and from the error it makes in each rope's force,
 `EA/L G e` (G = dL/dq), against `FORCE_TOL x tolerance x` the rope's force (the larger
@@ -93,6 +94,14 @@ class Stepper:
         self._taut = None
         self.M = mech.M
         self.diag = np.arange(n) * (n + 1)         # flat indices of a (n, n) diagonal
+        # joint coordinates: the mass matrix is block-diagonal, the loads' and drums'
+        # diagonal (constant, self.M) and the joint coordinates' dense block M_J(u, t)
+        # (ev.MJ, with its derivatives ev.dMJ); self.M has zeros there
+        self.nJ = getattr(mech, "nJ", 0)
+        if self.nJ:
+            self.jd = slice(mech.nc, mech.nx)
+            self.M = mech.M.copy()
+            self.M[self.jd] = 0.0
         self.newton_tol = 1e-4 * spec.tolerance * lscale
         self.tol = spec.tolerance * lscale
         self.steps = self.rejected = self.newton_iterations = 0
@@ -113,11 +122,29 @@ class Stepper:
 
     def accel(self, t, q, v, taut):
         ev = self.ops.evaluate(t, q, v, taut, self.kin(t), tangent=False)
+        if self.nJ:
+            a = ev.F / np.where(self.M > 0, self.M, 1.0)
+            a[self.jd] = np.linalg.solve(ev.MJ, ev.F[self.jd])
+            return a, self.ops.powers(ev)
         return ev.F / self.M, self.ops.powers(ev)
 
-    def _factor(self, ev, c1, c2):
+    def inertia(self, ev, a):
+        """M a with the mass matrix of the state `ev` (block-diagonal with joints)."""
+        Ma = self.M * a
+        if self.nJ:
+            Ma[self.jd] += ev.MJ @ a[self.jd]
+        return Ma
+
+    def _factor(self, ev, c1, c2, a1=None):
         J = ev.K + c2 * ev.C
         J.ravel()[self.diag] += c1 * self.M
+        if self.nJ:
+            # d(F - M(q) a)/dq: c1 M_J + dM_J/du . a on the joint block (Kane's terms'
+            # own derivatives are in ev.K and ev.C)
+            jd = self.jd
+            J[jd, jd] += c1 * ev.MJ
+            if a1 is not None:
+                J[jd, jd] += np.einsum("ijk,j->ik", ev.dMJ, a1[jd])
         # LAPACK's LU (partial pivoting, as np.linalg.solve) without numpy's wrapping,
         # then the inverse for the following iterations (modified Newton): for the few,
         # well-conditioned coordinates (4/h^2 M dominates) one product per iteration;
@@ -184,11 +211,11 @@ class Stepper:
             fresh = Jinv is None
             ev = self.ops.evaluate(t1, q1, v1, taut, kt, tangent=fresh, full=False)
             self.newton_iterations += 1
-            R = ev.F - M * a1
+            R = ev.F - (M * a1 if not self.nJ else self.inertia(ev, a1))
             if fresh:
                 if not math.isfinite(R.sum()):
                     return None
-                Jinv = self._factor(ev, c1, c2)
+                Jinv = self._factor(ev, c1, c2, a1)
                 if Jinv is None:
                     return None
             dq = Jinv @ R
@@ -274,6 +301,11 @@ def simulate(model, progress=None, initial=None, fast=None):
             hh = min(h, spec.max_step, t_next - t)
             if t_next - t - hh < 1e-9 * hh:
                 hh = t_next - t
+            # a step ending at a breakpoint sees the prescribed accelerations from the
+            # left (they act on joint coordinates through Kane's carried term); the next
+            # step starts from their right limits (below)
+            at_bp = bool(st.nJ) and hh == t_next - t and t_next < T
+            mech.left_at = t + hh if at_bp else None
             out = st.step(t, q, v, a, hh, taut, jerk)
             if out is None:
                 st.rejected += 1
@@ -315,6 +347,11 @@ def simulate(model, progress=None, initial=None, fast=None):
             rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
             jerk = (a1 - a) / hh
             t, q, v, a, ev = t + hh, q1, v1, a1, ev1
+            if at_bp:
+                mech.left_at = None
+                a, ev = st.accel(t, q, v, taut)       # the right limits
+                rec.switch(t, ev, taut)
+                jerk = None
             st.steps += 1
             _two_blocking(mech, st.ops.span_lengths(ev), t)
             mech.check_range(ev, t)

@@ -3,8 +3,9 @@
 Coordinates q: the Cartesian positions of the point masses not carried by bodies (3 each,
 2 in a plane: xz model; with `sway: false` only the height), then the positions of
 joints driven by a torque, force or motor or free (the arc rho phi of a hinge, the
-travel of a slider; the bodies they carry enter by their exact kinetic energy,
-joints.py), then the angles of drums driven by a torque or a motor. A linear drive
+travel of a slider; the bodies they carry, with any joints moving below them, enter by
+their exact kinetic energy: a configuration- and time-dependent block M_J of the mass
+matrix, joints.JointChain), then the angles of drums driven by a torque or a motor. A linear drive
 moves its planar linkage kinematically (linkage.py). Bodies move rigidly by the prescribed joint motions
 (exact rotations, `cranefe.elements.hinge_motion`); a prescribed drum's angle is a known function
 of time; every other joint and drum is held. Ropes and axial springs that touch a
@@ -24,7 +25,7 @@ import numpy as np
 from ...errors import AnalysisError, ModelError
 from ...model.model import GROUND
 from ... import elements as kernels
-from .joints import joint_jacobian, pair, subtree_mass
+from .joints import JointChain, subtree_mass
 from .linkage import LinkageDrive
 
 
@@ -52,6 +53,8 @@ class Eval:
     P_wound: float           # elastic energy carried onto the drums with the rope (W)
     T_guided: float = 0.0    # horizontal kinetic energy of loads without sway (J)
     joint_torque: np.ndarray = None   # (nJ,) torque (N m) / force (N) of joint drives
+    MJ: np.ndarray = None    # (nJ, nJ) mass matrix of the joint coordinates at (t, q)
+    dMJ: np.ndarray = None   # (nJ, nJ, nJ) its derivatives dM_ij / du_k
 
 
 class Mechanism:
@@ -65,6 +68,7 @@ class Mechanism:
         self.up = -g / gn if gn > 0 else np.array([0.0, 0.0, 1.0])
         self.sway = model.effects.sway
         self.warnings = []
+        self.left_at = None          # a breakpoint approached from the left (joint_motions)
         if not model.effects.rope_elasticity:
             raise ModelError("operation scenes with inextensible ropes (rope_elasticity: "
                              "false) are not built yet; use elastic ropes (a stiff EA)",
@@ -135,23 +139,6 @@ class Mechanism:
         free_bodies = [model.bodies[b].name for b in range(nb) if b not in parent]
         self.free_bodies = free_bodies
         self.driven_joints = driven
-        # joint coordinates: the subtree a torque/force/motor/free joint carries must be
-        # rigid (no moving joint below it): its mass matrix is then one constant number
-        for b in order:
-            p, k = parent[b]
-            if k not in driven:
-                continue
-            a = p
-            while a != GROUND:
-                pa, ka = parent[a]
-                if ka in driven and driven[ka].coordinate:
-                    raise ModelError(
-                        f"drive '{driven[k].name}' moves {model.joints[k].label} on the "
-                        f"bodies that drive '{driven[ka].name}' carries as a coordinate; "
-                        "a torque, force, motor or free joint with a moving joint below "
-                        "it is not solved yet (prescribe the outer joint's motion with a "
-                        "profile)", model.scene_file or model.file, driven[k].entry)
-                a = pa
 
     def body_motions(self, t, states=None):
         """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity); `states`:
@@ -224,21 +211,66 @@ class Mechanism:
                                if d is not None and d.kind == "profile"]
 
     def _joint_mass(self):
-        """The joint coordinates' chain entries and generalised masses."""
-        # joint coordinates: M = int |dx/du|^2 dm (+ the motor's rotor), u = rho phi
-        MJ = np.zeros(self.nJ)
-        mot = self.body_motions(0.0)
-        for c, jc in enumerate(self.jc):
-            ch = next(x for x in self._chain if x[0] == jc["child"])
-            jc["chain"] = ch
-            Rq, pq, _, _ = joint_jacobian(mot[jc["parent"]], jc["hinge"], ch[5], ch[6],
-                                          ch[7], ch[8], jc["sign"], 0.0)
-            d = jc["drive"]
-            MJ[c] = (pair(Rq, pq, Rq, pq, jc["m"], jc["s"], jc["Th"])
-                     + d.rotor_inertia * d.gear_ratio ** 2) / jc["rho"] ** 2
-        self.MJ = MJ
-        self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3), MJ,
-                                 self.J])
+        """The joint coordinates' chain (joints.JointChain: the bodies below them and
+        their ancestors, the rigid sets with their mass properties, the nodes they
+        carry) and the diagonal of the mass matrix at the reference state (the joint
+        block M_J(u, t) is made at every evaluation: Eval.MJ)."""
+        if not self.nJ:
+            self.chain = None
+            self.MJ_rotor = np.zeros(0)
+            return
+        model = self.model
+        coord = {id(jc["drive"]): c for c, jc in enumerate(self.jc)}
+        owner = {}                              # body -> the body whose motion it has
+        for b, p, d, *_ in self._chain:
+            link = self.linear is not None and b in self.linear.bodies
+            owner[b] = owner.get(p, p) if (d is None and not link) else b
+        under = set()
+        for b, p, d, *_ in self._chain:
+            if p in under or (d is not None and d.coordinate):
+                under.add(b)
+        need = set(under)
+        for b in under:
+            a = b
+            while a != GROUND:
+                need.add(a)
+                a = self.parent[a][0]
+        chain = [(b, p, d, sign, hinge, K, K2, point, axis,
+                  coord.get(id(d)) if d is not None else None)
+                 for b, p, d, sign, hinge, K, K2, point, axis in self._chain if b in need]
+        sets, groups = [], []
+        for o in sorted({owner[b] for b in under}):
+            bodies = [b for b in under if owner[b] == o]
+            nodes = np.array([i for i in range(self.nn) if self.carrier[i] in bodies],
+                             dtype=int)
+            m, s1, Th = subtree_mass(model, bodies, nodes)
+            if m > 0:
+                sets.append((o, m, s1, Th, None, True))
+            if len(nodes):
+                groups.append((o, nodes, model.coords[nodes].astype(float), None))
+        # sway off: a load guided horizontally by a body the coordinates carry has its
+        # horizontal inertia on them (projected by H), its height its own coordinate
+        self.guided_joint = np.zeros(len(self.free), bool)
+        if not self.sway:
+            H = self._H
+            for k, i in enumerate(self.free):
+                r = int(self.root[k])
+                if r < 0 or r not in self.jnodes:
+                    continue
+                o = owner[self.carrier[r]]
+                X = np.asarray(model.coords[r], float)
+                mk = float(self.free_mass[k])
+                sets.append((o, mk, mk * X, mk * np.outer(X, X), H, False))
+                groups.append((o, np.array([i]), X[None], H))
+                self.guided_joint[k] = True
+        self.chain = JointChain(chain, [jc["rho"] for jc in self.jc], sets, groups,
+                                self.g, self.linear)
+        self.MJ_rotor = np.array([jc["drive"].rotor_inertia * jc["drive"].gear_ratio ** 2
+                                  / jc["rho"] ** 2 for jc in self.jc])
+        st = self.chain.state(0.0, np.zeros(self.nJ), np.zeros(self.nJ), tangent=False)
+        self.MJ = np.diag(st.M) + self.MJ_rotor
+        self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
+                                 self.MJ, self.J])
         self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
 
     def _nodes(self, model):
@@ -292,7 +324,7 @@ class Mechanism:
                         stack.append(c)
             nodes = np.array([i for i in range(self.nn) if self.carrier[i] in sub],
                              dtype=int)
-            m, s1, Th = subtree_mass(model, sorted(sub), nodes)
+            m = subtree_mass(model, sorted(sub), nodes)[0]
             hinge = j.type == "hinge"
             a = np.asarray(model.coords[j.at], float)
             pts = [model.coords[i] for i in nodes] + [model.bodies[x].com for x in sub
@@ -309,12 +341,11 @@ class Mechanism:
                                  "the bodies it carries have no mass; give them mass "
                                  "(bodies.NAME.mass) or prescribe a profile",
                                  model.scene_file or model.file, d.entry)
-            self.jc.append(dict(drive=d, joint=k, child=b, parent=p, hinge=hinge,
-                                nodes=nodes, Xr=model.coords[nodes], m=m, s=s1, Th=Th,
-                                rho=rho, sign=1.0 if j.bodies[1] == b else -1.0,
-                                chain=None))
+            self.jc.append({"drive": d, "joint": k, "child": b, "parent": p,
+                            "hinge": hinge, "nodes": nodes, "rho": rho,
+                            "sign": 1.0 if j.bodies[1] == b else -1.0})
         self.nJ = len(self.jc)
-        self.jnodes = set(int(i) for c in self.jc for i in c["nodes"])
+        self.jnodes = {int(i) for c in self.jc for i in c["nodes"]}
 
     def _elements(self, model):
         """Ropes and axial springs that touch a point mass (the others join bodies whose
@@ -403,17 +434,6 @@ class Mechanism:
         self.qx_ref = E.T @ model.coords[self.free].ravel()
         # with sway off: the kinematic root each mass's horizontal position follows
         self.root = np.array([self._root(model, k) for k in range(nf)], dtype=int)
-        if not self.sway:
-            for k in range(nf):
-                if int(self.root[k]) in self.jnodes:
-                    jc = next(c for c in self.jc if int(self.root[k]) in c["nodes"])
-                    raise ModelError(
-                        f"with sway: false the load at node "
-                        f"'{model.node_names[self.free[k]]}' is guided horizontally by "
-                        f"the bodies that drive '{jc['drive'].name}' moves as a "
-                        "coordinate; its horizontal inertia on that joint is not solved "
-                        "yet: turn sway on (or prescribe the joint's motion)", file,
-                        jc["drive"].entry)
 
     def _above(self, model, i):
         """The node a point mass hangs from: the other end of its highest rope span or
@@ -503,57 +523,44 @@ class Mechanism:
         self._kin_key, self._kin_last = key, (X, V, A, th)
         return X, V, A, th
 
-    def joint_motions(self, t, q, v):
-        """Per joint coordinate: the child's motion (R, R', R''|_{u''=0}, p, p', p'')
-        at the coordinates' (u, u') and the prescribed drives' motion at t, and its
-        derivatives (R_u, p_u, R_uu, p_uu) by the coordinate u = rho s."""
-        nc = self.nc
-        states, c = [], 0
-        for d in self._chain_drives:
-            if d.coordinate:
-                jc = self.jc[c]
-                r = jc["rho"]
-                states.append((q[nc + c] / r, v[nc + c] / r, 0.0))
-                c += 1
-            else:
-                states.append(d.motion(t))
-        mot = self.body_motions(t, states)
-        out = []
-        for c, jc in enumerate(self.jc):
-            ch, r = jc["chain"], jc["rho"]
-            Rq, pq, Rqq, pqq = joint_jacobian(mot[jc["parent"]], jc["hinge"], ch[5], ch[6],
-                                              ch[7], ch[8], jc["sign"], q[nc + c] / r)
-            out.append((mot[jc["child"]], Rq / r, pq / r, Rqq / r**2, pqq / r**2))
-        return out
+    def joint_motions(self, t, q, v, tangent=True):
+        """The joint coordinates' terms at (t, q, q') (joints.JointState): their mass
+        matrix M_J (with the motors' rotors), Kane's inertia and gravity forces with
+        their tangents, energies, and the positions and derivatives of the nodes they
+        carry. At t == `left_at` (a step ending at a breakpoint of a prescribed drive)
+        the prescribed accelerations are their limits from the left."""
+        nc, nx = self.nc, self.nx
+        st = self.chain.state(t, q[nc:nx], v[nc:nx], left=(t == self.left_at),
+                              tangent=tangent)
+        st.M = st.M + np.diag(self.MJ_rotor)
+        return st
 
-    def _joint_spans(self, jm):
+    def _joint_spans(self, js):
         """Span-difference Jacobians over all metre coordinates D (ns, 3, nx), the second
-        derivatives along each joint coordinate DJJ (ns, 3, nJ), and the nodes'
-        derivatives XJ (nn, 3, nJ) (zero off the joint's subtree)."""
-        ns, nJ = len(self.span_a), self.nJ
-        DJ = np.zeros((ns, 3, nJ))
-        DJJ = np.zeros((ns, 3, nJ))
-        for c, (jc, (_, Rq, pq, Rqq, pqq)) in enumerate(zip(self.jc, jm)):
-            # span ends on the joint's subtree (index arrays made at setup)
-            for idx, Xr, sg in jc["span_ends"]:
-                DJ[idx, :, c] += sg * (Xr @ Rq.T + pq)
-                DJJ[idx, :, c] += sg * (Xr @ Rqq.T + pqq)
-        return np.concatenate([self.D, DJ], axis=2), DJJ, None
+        derivatives by the joint coordinates DJJ (ns, 3, nJ, nJ), and the nodes'
+        first derivatives XJ (nn, 3, nJ) (zero off the bodies the coordinates carry)."""
+        nJ = self.nJ
+        XJ = np.zeros((self.nn, 3, nJ))
+        XJJ = np.zeros((self.nn, 3, nJ, nJ))
+        for idx, _, _, xj, xjj, _ in js.groups:
+            XJ[idx] = xj
+            XJJ[idx] = xjj
+        DJ = XJ[self.span_b] - XJ[self.span_a]
+        DJJ = XJJ[self.span_b] - XJJ[self.span_a]
+        return np.concatenate([self.D, DJ], axis=2), DJJ, XJ
 
-    def _joint_forces(self, t, q, v, jm, F, K, C):
-        """Add gravity, the velocity-dependent inertia (Kane) and the drive of every joint
-        coordinate to F (and K, C); return the drives' torques (N m) or forces (N)."""
-        g, nc = self.g, self.nc
+    def _joint_forces(self, t, q, v, js, F, K, C):
+        """Add gravity, Kane's inertia terms (Coriolis, centrifugal, carried
+        accelerations) and the drive of every joint coordinate to F (and their
+        derivatives to K, C); return the drives' torques (N m) or forces (N)."""
+        nc, nx = self.nc, self.nx
+        jd = slice(nc, nx)
+        F[jd] += js.F
+        K[jd, jd] += js.K
+        C[jd, jd] += js.C
         jt = np.zeros(self.nJ)
-        for c, (jc, (mo, Rq, pq, Rqq, pqq)) in enumerate(zip(self.jc, jm)):
+        for c, jc in enumerate(self.jc):
             i, r = nc + c, jc["rho"]
-            m, s1, Th = jc["m"], jc["s"], jc["Th"]
-            # gravity: int x_u . g dm = g . (R_u s + m p_u); d/du: g . (R_uu s + m p_uu)
-            F[i] += g @ (Rq @ s1 + m * pq)
-            K[i, i] -= g @ (Rqq @ s1 + m * pqq)
-            # Kane: -int x_u . x''|_{u''=0} dm (centrifugal, Coriolis, the prescribed
-            # parent's acceleration); zero for a rigid subtree turning about a fixed axis
-            F[i] -= pair(Rq, pq, mo[2], mo[5], m, s1, Th)
             d = jc["drive"]
             if d.kind == "torque":
                 tq, dtq = d.torque(t)[0], 0.0
@@ -568,40 +575,42 @@ class Mechanism:
             C[i, i] -= dtq / r ** 2
         return jt
 
-    def _joint_power(self, ev, jm, q, v):
-        """Power of the joint drives (torque x speed) and of a prescribed parent on the
-        subtree it carries: int (x'' - g) . v_presc dm, v_presc the velocity field with
-        the coordinate held, x'' with u'' = F_u / M_u (the accepted state's)."""
-        nc, g = self.nc, self.g
+    def mass_matrix(self, ev):
+        """The dense mass matrix (n, n) at the state of `ev`: the loads' and drums'
+        constant diagonal and the joint coordinates' block M_J(u, t) (ev.MJ)."""
+        M = np.diag(self.M)
+        if self.nJ:
+            M[self.nc:self.nx, self.nc:self.nx] = ev.MJ
+        return M
+
+    def joint_accel(self, ev):
+        """The joint coordinates' accelerations M_J^-1 F_J of an evaluated state (the
+        loads are decoupled from them in the mass matrix)."""
+        return np.linalg.solve(ev.MJ, ev.F[self.nc:self.nx])
+
+    def _joint_power(self, ev, js, q, v):
+        """Power of the joint drives (torque x speed) and of the prescribed parents on
+        the sets the coordinates carry: int (x'' - g) . x_t dm, x_t the velocity field
+        with the coordinates held, x'' with u'' = M_J^-1 F_J (the accepted state's)."""
+        nc = self.nc
         P = 0.0
-        for c, (jc, (mo, Rq, pq, _, _)) in enumerate(zip(self.jc, jm)):
-            i, r = nc + c, jc["rho"]
-            P += ev.joint_torque[c] * v[i] / r
-            if jc["parent"] == GROUND or jc["parent"] not in self.moving:
-                continue
-            R, dR, ddR, p, dp, ddp = mo
-            au = ev.F[i] / self.M[i]
-            B, b = dR - Rq * v[i], dp - pq * v[i]
-            m, s1, Th = jc["m"], jc["s"], jc["Th"]
-            P += pair(ddR + Rq * au, ddp + pq * au, B, b, m, s1, Th) \
-                - g @ (B @ s1 + m * b)
+        for c, jc in enumerate(self.jc):
+            P += ev.joint_torque[c] * v[nc + c] / jc["rho"]
+        if js.pw:
+            P += self.chain.power(js, self.joint_accel(ev))
         return P
 
     def _joint_energy(self, ev):
         """Kinetic energy 1/2 int |x'|^2 dm and gravity potential -g . int x dm of the
-        subtrees of the joint coordinates."""
-        jm = ev._ctx[4][0]
-        T = Vg = 0.0
-        for c, (jc, (mo, *_)) in enumerate(zip(self.jc, jm)):
-            R, dR, _, p, dp, _ = mo
-            m, s1, Th = jc["m"], jc["s"], jc["Th"]
+        bodies the joint coordinates carry (with the motors' rotors)."""
+        js, _, _, v = ev._ctx[4]
+        T = js.T
+        for c, jc in enumerate(self.jc):
             d = jc["drive"]
-            T += 0.5 * pair(dR, dp, dR, dp, m, s1, Th)
             if d.rotor_inertia:              # the motor's rotor at i times joint speed
-                w = ev._ctx[4][3][self.nc + c] / jc["rho"]
+                w = v[self.nc + c] / jc["rho"]
                 T += 0.5 * d.rotor_inertia * (d.gear_ratio * w) ** 2
-            Vg -= self.g @ (R @ s1 + m * p)
-        return T, float(Vg)
+        return T, float(js.Vg)
 
     def check_range(self, ev, t):
         """A joint coordinate past its range (the engine has no end stops), or a drum
@@ -669,11 +678,27 @@ class Mechanism:
         X, V, _, th = self.kinematics(t) if kin is None else kin
         X, V = X.copy(), V.copy()
         if self.nJ:
-            jm = self.joint_motions(t, q, v) if jm is None else jm
-            for jc, (mo, *_) in zip(self.jc, jm):
-                R, dR, _, p, dp, _ = mo
-                X[jc["nodes"]] = jc["Xr"] @ R.T + p
-                V[jc["nodes"]] = jc["Xr"] @ dR.T + dp
+            if jm is None:
+                # positions and velocities only: the bodies' motions with u'' = 0
+                states, c = [], 0
+                for d in self._chain_drives:
+                    if d.coordinate:
+                        r = self.jc[c]["rho"]
+                        states.append((q[self.nc + c] / r, v[self.nc + c] / r, 0.0))
+                        c += 1
+                    else:
+                        states.append(d.motion(t))
+                mot = self.body_motions(t, states)
+                for b, idx, Xr, proj in self.chain.groups_spec:
+                    if proj is None:
+                        R, dR, _, p, dp, _ = mot[b]
+                        X[idx] = Xr @ R.T + p
+                        V[idx] = Xr @ dR.T + dp
+            else:
+                for idx, Xg, Vg, _, _, own in jm.groups:
+                    if own:
+                        X[idx] = Xg
+                        V[idx] = Vg
         nf = len(self.free)
         if nf:
             P = (self.E @ q[:self.nc]).reshape(nf, 3)
@@ -724,12 +749,6 @@ class Mechanism:
         self.Fg = np.concatenate([self.E.T @ (np.repeat(self.free_mass, 3) *
                                               np.tile(self.g, nf)), np.zeros(self.nJ)])
         self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
-        coords = self.model.coords
-        for jc in self.jc:
-            on = np.isin(self.span_b, jc["nodes"]), np.isin(self.span_a, jc["nodes"])
-            jc["span_ends"] = [(np.flatnonzero(m), coords[ends[m]], sg) for m, ends, sg in
-                               ((on[0], self.span_b, 1.0), (on[1], self.span_a, -1.0))
-                               if m.any()]
 
     def evaluate(self, t, q, v, taut, kin=None, damping=True, powers=True):
         """Forces and tangents at (t, q, v); with powers=False the power terms of the
@@ -768,12 +787,10 @@ class Mechanism:
         w = self.falls * S[self.span_rope] / l
         if self.nJ:
             # the span vectors depend on the joint coordinates too: D_s^T D_s changes,
-            # and d^2L/du^2 gains f e . (d^2 Delta / du^2) (same coordinate only: a node
-            # moves with one joint coordinate at most)
+            # and d^2L/du_i du_k gains f e . (d^2 Delta / du_i du_k)
             K[:nx, :nx] = (G.T * cL) @ G + np.einsum("s,sia,sib->ab", w, D, D) \
                 - (eD.T * w) @ eD
-            jd = np.arange(nc, nx)
-            K[jd, jd] += np.einsum("s,si,sij->j", w * l, e, DJJ)
+            K[nc:nx, nc:nx] += np.einsum("s,si,sijk->jk", w * l, e, DJJ)
             jt = self._joint_forces(t, q, v, jm, F, K, C)
         else:
             K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) \
@@ -783,7 +800,12 @@ class Mechanism:
         Sd = np.zeros(nr)
         b = np.zeros(nr)
         if damping and self.damped and nr:
-            w2 = cL * ((G * G) @ self.invM_x)
+            invM = self.invM_x
+            if self.nJ:
+                # a joint coordinate's mass with the others held: the current M_J's diagonal
+                invM = invM.copy()
+                invM[nc:] = 1.0 / np.diag(jm.M)
+            w2 = cL * ((G * G) @ invM)
             for cc, k in enumerate(self.qdrums):
                 w2 = w2 + cL * Rd[:, k] ** 2 / self.J[cc]
             w = np.sqrt(np.maximum(w2, 0.0))
@@ -841,6 +863,8 @@ class Mechanism:
             spring = None
         ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
                   None, None, None, joint_torque=jt)
+        if self.nJ:
+            ev.MJ, ev.dMJ = jm.M, jm.dM
         ev._ctx = (fe, lam, taut, spring, (jm, XJ, q, v))
         if powers:
             self.powers(ev)
@@ -850,7 +874,7 @@ class Mechanism:
         """Fill the power terms of `ev` (W) and the guided loads' kinetic energy (J)."""
         if ev.P_drive is not None:
             return ev
-        fe, lam, taut, spring, (jm, XJ, q, v) = ev._ctx
+        fe, lam, taut, spring, (jm, _, q, v) = ev._ctx
         S, Sd, V, omega, Rd = ev.S, ev.Sd, ev.V, ev.omega, self.Rd
         # energy carried onto (off) the drums with the wound rope: the drum's work
         # (S R omega) less the change of the free rope's energy (R omega / lambda_ref)
@@ -865,8 +889,10 @@ class Mechanism:
             # the nodes a joint coordinate carries: only the prescribed part of their
             # velocity is fed in from outside (the rest is the coordinate's own motion)
             V = V.copy()
-            for c, (jc, (_, Rq, pq, _, _)) in enumerate(zip(self.jc, jm)):
-                V[jc["nodes"]] -= (jc["Xr"] @ Rq.T + pq) * v[self.nc + c]
+            vJ = v[self.nc:self.nx]
+            for idx, _, _, xj, _, own in jm.groups:
+                if own:
+                    V[idx] -= xj @ vJ
         Vk = np.where(self.kin_b[:, None], V[self.span_b], 0.0) - \
             np.where(self.kin_a[:, None], V[self.span_a], 0.0)
         rVk = self.A @ np.einsum("si,si->s", fe, Vk)
@@ -891,8 +917,12 @@ class Mechanism:
         # does the work of their horizontal kinetic energy (the ropes hang vertically)
         T_guided = 0.0
         if not self.sway and len(self.free):
+            # (loads guided by bodies a joint coordinate carries: their horizontal
+            # inertia is in the coordinates' equations, the guidance internal)
             Vh = V[self.free] - np.outer(V[self.free] @ self.up, self.up)
-            T_guided = 0.5 * float(self.free_mass @ np.einsum("ij,ij->i", Vh, Vh))
+            mg = self.free_mass if not self.nJ else \
+                np.where(self.guided_joint, 0.0, self.free_mass)
+            T_guided = 0.5 * float(mg @ np.einsum("ij,ij->i", Vh, Vh))
         ev.P_drive, ev.P_diss = P, float(Sd @ ev.edot) + P_sp_diss
         ev.P_wound, ev.T_guided = P_wound, T_guided
         return ev
@@ -943,14 +973,13 @@ class Mechanism:
         QgJ = np.zeros(self.nJ)
         GJ = np.zeros((nr, self.nJ))
         if self.nJ:
-            jm = self.joint_motions(0.0, q0, np.zeros(self.n))
+            jm = self.joint_motions(0.0, q0, np.zeros(self.n), tangent=False)
             D, _, _ = self._joint_spans(jm)
             l = np.linalg.norm(X[self.span_b] - X[self.span_a], axis=1)
             e = (X[self.span_b] - X[self.span_a]) / l[:, None]
             GJ = self.A @ (self.falls[:, None] *
                            np.einsum("si,sij->sj", e, D[:, :, self.nc:]))
-            for c, (jc, (_, Rq, pq, _, _)) in enumerate(zip(self.jc, jm)):
-                QgJ[c] = self.g @ (Rq @ jc["s"] + jc["m"] * pq)
+            QgJ = jm.Fg.copy()
         free_j = [c for c, jc in enumerate(self.jc) if jc["drive"].kind == "free"]
         G = np.hstack([G, GJ[:, free_j]])
         Fg = np.concatenate([Fg, QgJ[free_j]])
