@@ -21,20 +21,24 @@ def radau(model, rtol=1e-8, atol=1e-9, sample=0.002):
     """(peak (nr,), static (nr,), steps, force evaluations, CPU seconds)."""
     spec = parse(model)
     mech = Mechanism(model, spec)
-    n, M, taut = mech.n, mech.M, mech.taut0
+    n, taut = mech.n, mech.taut0
     count = [0]
 
     def f(t, y):
         count[0] += 1
         ev = mech.evaluate(t, y[:n], y[n:], taut)
-        return np.concatenate([y[n:], ev.F / M])
+        # the mass matrix of the state: joint coordinates carry a dense block M_J(u, t)
+        return np.concatenate([y[n:], np.linalg.solve(mech.mass_matrix(ev), ev.F)])
 
     def jac(t, y):
+        # for Newton's iteration only: d(M^-1)/dq F is left out (it changes the
+        # iteration's convergence, not the solution)
         ev = mech.evaluate(t, y[:n], y[n:], taut)
         J = np.zeros((2 * n, 2 * n))
         J[:n, n:] = np.eye(n)
-        J[n:, :n] = -ev.K / M[:, None]
-        J[n:, n:] = -ev.C / M[:, None]
+        Minv = np.linalg.inv(mech.mass_matrix(ev))
+        J[n:, :n] = -Minv @ ev.K
+        J[n:, n:] = -Minv @ ev.C
         return J
 
     t0 = time.process_time()

@@ -163,8 +163,8 @@ def crane_modes(model, op, t, newton_tol=1e-10):
         raise AnalysisError(f"a rope is slack at the static state of t = {t:g} s; the "
                             "shaper's frequency auto needs hanging loads")
     K = 0.5 * (ev.K[:nx, :nx] + ev.K[:nx, :nx].T)
-    M = mech.M[:nx]
-    w2, phi = sl.eigh(K, np.diag(M))
+    M = mech.mass_matrix(ev)[:nx, :nx]          # with the joint coordinates' block
+    w2, phi = sl.eigh(K, 0.5 * (M + M.T))
     u = (mech.E @ phi).reshape(nf, 3, nx)                  # node displacements per mode
     m = mech.free_mass[:, None, None]
     vert = np.einsum("i,kim->km", mech.up, u)              # (nf, nx) vertical part
