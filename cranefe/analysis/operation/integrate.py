@@ -19,7 +19,7 @@ from scipy.linalg.lapack import dgetrf, dgetri
 
 from ...errors import AnalysisError
 from . import fast as _fast
-from .lean import Lean, ops as _ops
+from .lean import Generic, Lean, ops as _ops
 from .mechanism import Mechanism
 from .results import Recorder
 from .scene import parse
@@ -73,10 +73,24 @@ class StepControl:
         return h * max(self.LO, self.SAFE * err ** (-1 / 3))
 
 
+class _FlexOps(Generic):
+    """`Generic` for a mechanism with an elastic structure (flexible.py): the ropes'
+    rows G = dL/dq of the step's force error include the elastic coordinates (their
+    span columns R(t) depend on the time)."""
+
+    def evaluate(self, t, q, v, taut, kin, tangent=True, full=True):
+        ev = super().evaluate(t, q, v, taut, kin, tangent, full)
+        nx = self.m.nx
+        ev._G[:, :nx] = ev._flex_G
+        return ev
+
+
 class Stepper:
     def __init__(self, mech, spec, lscale, fast=None):
         self.m, self.spec = mech, spec
-        self.ops = _ops(mech)
+        # an elastic structure (flexible.py) is evaluated by Mechanism itself: Lean's
+        # span vectors have no elastic columns
+        self.ops = _FlexOps(mech) if getattr(mech, "flex", None) is not None else _ops(mech)
         # the compiled step (fast.py) where Lean covers the mechanism and numba is
         # installed (fast=None), or as asked (fast=False: numpy, the reference)
         if fast is None:
@@ -147,7 +161,7 @@ class Stepper:
             err = max(err, ef)
         return err * (h * h / 12.0)
 
-    def step(self, t0, q0, v0, a0, h, taut, jerk=None):
+    def step(self, t0, q0, v0, a0, h, taut, jerk=None, left=False):
         """One trapezoidal step of length h -> (q1, v1, a1, ev1, err) or None.
 
         Newton's method from a predictor, on the tangent `4/h^2 M + 2/h C + K` made and
@@ -160,8 +174,13 @@ class Stepper:
         Predictor: the trapezoidal rule's own q1 = q0 + h v0 + h^2/4 (a0 + a1) with a1
         extrapolated as a0 + h jerk (jerk: the last step's (a0 - a_prev) / h_prev), so
         that the first correction is the extrapolation's O(h^4) error.
+        left: the step ends at a breakpoint of the prescribed motions and its end is
+        evaluated there from the left (the motions' accelerations before their jump:
+        a frame carrying an elastic structure, flexible.py, feeds them into the forces).
         """
         t1 = t0 + h
+        if left:
+            t1 = math.nextafter(t1, -math.inf)
         if self.fast:
             st, q1, v1, a1, err, its, tg, ev = self.ops.step(
                 t1, q0, v0, a0, h, taut, jerk, self.M, self.newton_tol, NEWTON_MAX,
@@ -242,6 +261,7 @@ def simulate(model, progress=None, initial=None, fast=None):
     lscale = model.length_scale
     st = Stepper(mech, spec, lscale, fast)
     T = spec.duration
+    flex = getattr(mech, "flex", None) is not None
     q = mech.q0.copy()
     v = np.zeros(mech.n)
     if initial is not None:
@@ -274,7 +294,11 @@ def simulate(model, progress=None, initial=None, fast=None):
             hh = min(h, spec.max_step, t_next - t)
             if t_next - t - hh < 1e-9 * hh:
                 hh = t_next - t
-            out = st.step(t, q, v, a, hh, taut, jerk)
+            # an elastic structure's frame acceleration enters its forces: a step that
+            # ends at a breakpoint takes the left limit there, the next one starts from
+            # the right limit (both exact at a jump of the prescribed acceleration)
+            left = flex and hh == t_next - t and bi < len(bps)
+            out = st.step(t, q, v, a, hh, taut, jerk, left)
             if out is None:
                 st.rejected += 1
                 h = hh * 0.25
@@ -315,6 +339,9 @@ def simulate(model, progress=None, initial=None, fast=None):
             rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
             jerk = (a1 - a) / hh
             t, q, v, a, ev = t + hh, q1, v1, a1, ev1
+            if left:                    # the right limit at the breakpoint
+                a, ev = st.accel(t, q, v, taut)
+                jerk = None
             st.steps += 1
             _two_blocking(mech, st.ops.span_lengths(ev), t)
             mech.check_range(ev, t)

@@ -24,6 +24,7 @@ import numpy as np
 from ...errors import AnalysisError, ModelError
 from ...model.model import GROUND
 from ... import elements as kernels
+from . import flexible
 from .joints import joint_jacobian, pair, subtree_mass
 from .linkage import LinkageDrive
 
@@ -82,6 +83,8 @@ class Mechanism:
         self._chain_setup(model)
         self._joint_mass()
         self._static(model)
+        if self.flex is not None:        # the static state with the elastic structure
+            self.flex.settle(self)
 
     # ----------------------------------------------------------------- kinematics
     def _tree(self, model):
@@ -238,8 +241,12 @@ class Mechanism:
                      + d.rotor_inertia * d.gear_ratio ** 2) / jc["rho"] ** 2
         self.MJ = MJ
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3), MJ,
-                                 self.J])
+                                 self._Mu(), self.J])
         self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
+
+    def _Mu(self):
+        """The elastic nodes' lumped masses, one per elastic coordinate."""
+        return np.zeros(0) if self.flex is None else self.flex.Mu
 
     def _nodes(self, model):
         nn = self.nn
@@ -265,6 +272,14 @@ class Mechanism:
                                  "bodies: free bodies are not solved by operation scenes "
                                  "yet", model.file, f"bodies.{b.name}")
         self.carrier = carrier
+        # the elastic structure (effects.structure: flexible): member nodes no body
+        # carries get coordinates in their frame (flexible.py)
+        self.flex = None
+        if flexible.active(model):
+            fl = flexible.ElasticStructure(self, model)
+            if fl.nu:
+                self.flex = fl
+                carrier[fl.model_nodes] = flexible.ELASTIC
         mass_of = dict(zip(model.masses.nodes.tolist(), model.masses.mass.tolist()))
         self.free = np.array([i for i in model.masses.nodes if carrier[i] == -2], dtype=int)
         self.free_mass = np.array([mass_of[i] for i in self.free])
@@ -326,11 +341,12 @@ class Mechanism:
         free = set(self.free.tolist())
         kin = set(self.kin.tolist())
         ok = free | kin
+        elastic = set() if self.flex is None else set(self.flex.model_nodes.tolist())
         file = model.scene_file or model.file
         act, a, b, f, rid = [], [], [], [], []
         for k, rp in enumerate(model.ropes):
             nodes = set(rp.span_a.tolist()) | set(rp.span_b.tolist())
-            if not nodes & (free | self.jnodes):
+            if not nodes & (free | self.jnodes | elastic):
                 continue
             bad = nodes - ok
             if bad:
@@ -395,12 +411,15 @@ class Mechanism:
                         f"nodes.{model.node_names[i]}")
                 dirs.append((k, self.up.copy()))
         self.nc = len(dirs)                 # Cartesian coordinates of the point masses
-        self.nx = self.nc + self.nJ         # coordinates in metres (then drum angles)
+        self.nu = 0 if self.flex is None else self.flex.nu    # elastic structure
+        self.nx = self.nc + self.nJ + self.nu   # coordinates in metres (then drum angles)
         E = np.zeros((3 * nf, self.nc))
         for c, (k, ax) in enumerate(dirs):
             E[3 * k:3 * k + 3, c] = ax
         self.E = E
         self.qx_ref = E.T @ model.coords[self.free].ravel()
+        if self.flex is not None:
+            self.flex.setup(self, model)
         # with sway off: the kinematic root each mass's horizontal position follows
         self.root = np.array([self._root(model, k) for k in range(nf)], dtype=int)
         if not self.sway:
@@ -471,7 +490,7 @@ class Mechanism:
         self.J = np.array([model.drums[k].reduced_inertia for k in self.qdrums])
         self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
-                                 np.zeros(self.nJ), self.J])
+                                 np.zeros(self.nJ), self._Mu(), self.J])
         self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
 
     # ----------------------------------------------------------------- state at t
@@ -674,6 +693,8 @@ class Mechanism:
                 R, dR, _, p, dp, _ = mo
                 X[jc["nodes"]] = jc["Xr"] @ R.T + p
                 V[jc["nodes"]] = jc["Xr"] @ dR.T + dp
+        if self.flex is not None:
+            self.flex.place(self, t, q, v, X, V)
         nf = len(self.free)
         if nf:
             P = (self.E @ q[:self.nc]).reshape(nf, 3)
@@ -722,7 +743,8 @@ class Mechanism:
         if len(self.rope_drum):
             np.add.at(self.Rd, (self.rope_drum, self.drum_of_end), self.end_radius)
         self.Fg = np.concatenate([self.E.T @ (np.repeat(self.free_mass, 3) *
-                                              np.tile(self.g, nf)), np.zeros(self.nJ)])
+                                              np.tile(self.g, nf)), np.zeros(self.nJ),
+                                  np.zeros(self.nu)])
         self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
         coords = self.model.coords
         for jc in self.jc:
@@ -752,7 +774,9 @@ class Mechanism:
         if self.nJ:
             D, DJJ, XJ = self._joint_spans(jm)
         else:
-            D = self.D
+            D, XJ = self.D, None
+        if self.flex is not None:                # the elastic nodes' columns R
+            D = self.flex.spans(self, t, D)
         eD = np.einsum("si,sij->sj", e, D)                   # (ns, nx) e_s . D_s
         G = self.A @ (self.falls[:, None] * eD)              # (nr, nx) dL/dq_x
         Rd = self.Rd
@@ -766,19 +790,20 @@ class Mechanism:
         # tangent: EA/L G^T G + sum f S / l (I - e e^T) on the span ends
         # (kernels.projected_tangent, w = f S / l, with the constant D_s^T D_s made once)
         w = self.falls * S[self.span_rope] / l
-        if self.nJ:
+        jt = None
+        if self.nJ or self.flex is not None:
             # the span vectors depend on the joint coordinates too: D_s^T D_s changes,
             # and d^2L/du^2 gains f e . (d^2 Delta / du^2) (same coordinate only: a node
-            # moves with one joint coordinate at most)
+            # moves with one joint coordinate at most); elastic nodes: D_s has R(t)
             K[:nx, :nx] = (G.T * cL) @ G + np.einsum("s,sia,sib->ab", w, D, D) \
                 - (eD.T * w) @ eD
-            jd = np.arange(nc, nx)
-            K[jd, jd] += np.einsum("s,si,sij->j", w * l, e, DJJ)
-            jt = self._joint_forces(t, q, v, jm, F, K, C)
+            if self.nJ:
+                jd = np.arange(nc, nc + self.nJ)
+                K[jd, jd] += np.einsum("s,si,sij->j", w * l, e, DJJ)
+                jt = self._joint_forces(t, q, v, jm, F, K, C)
         else:
             K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) \
                 - (eD.T * w) @ eD
-            jt = XJ = None
         # damping: b = psi c / (2 pi w), c = EA/L, w the rope's axial frequency now
         Sd = np.zeros(nr)
         b = np.zeros(nr)
@@ -839,8 +864,14 @@ class Mechanism:
                 spring = (rs, 0.0)
         else:
             spring = None
+        if self.flex is not None:                # elastic, gravity, frame inertia
+            self.flex.forces(self, t, q, v, F, K, C)
         ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
                   None, None, None, joint_torque=jt)
+        if self.flex is not None:                # the ropes' force on u (power)
+            o = nc + self.nJ
+            ev._flex_rope = -(G[:, o:o + self.nu].T @ (S + Sd))
+            ev._flex_G = G                       # dL/dq_x (the step's force error)
         ev._ctx = (fe, lam, taut, spring, (jm, XJ, q, v))
         if powers:
             self.powers(ev)
@@ -887,6 +918,8 @@ class Mechanism:
         P += float(ev.drive_torque @ omega)
         if self.nJ:
             P += self._joint_power(ev, jm, q, v)
+        if self.flex is not None:
+            P += self.flex.power(self, ev, q, v)
         # loads without sway are guided horizontally with their carrier: the guidance
         # does the work of their horizontal kinetic energy (the ropes hang vertically)
         T_guided = 0.0
@@ -907,11 +940,16 @@ class Mechanism:
         if self.nJ:
             dT, dV = self._joint_energy(ev)
             T, Vg = T + dT, Vg + dV
+        if self.flex is not None:
+            dT, dV, dU = self.flex.energy(self, ev.t, ev._ctx[4][2], ev._ctx[4][3])
+            T, Vg = T + dT, Vg + dV
         with np.errstate(invalid="ignore", divide="ignore"):
             U = float(np.where(taut, kernels.hencky_energy(self.EA, ev.L, ev.L0), 0.0).sum())
         if len(self.sp_k):
             d = np.linalg.norm(ev.X[self.sp_b] - ev.X[self.sp_a], axis=1) - self.sp_dref
             U += float((self.N_ref * d + 0.5 * self.sp_k * d * d).sum())
+        if self.flex is not None:
+            U += dU
         return T, Vg, U
 
     # ----------------------------------------------------------------- static state
