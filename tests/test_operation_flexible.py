@@ -125,6 +125,43 @@ def test_linearisation_equals_the_linear_core(tmp_path):
     assert gaps[0] < 1e-5 and 70 < gaps[0] / gaps[1] < 130
 
 
+TRUSS = """cranefe: 1
+name: planar truss jib with a hanging load and a tie spring
+plane: xz
+gravity: [0, 0, GVAL]
+nodes:
+  A:    [0.0, 0.0, 20.0]
+  B:    [0.0, 0.0, 18.0]
+  C:    [6.0, 0.0, 20.0]
+  E:    [6.0, 0.0, 19.0]
+  T:    [12.0, 0.0, 20.0]
+  HOOK: [12.0, 0.0, 12.0]
+ground: [A, B]
+masses: {HOOK: 1500}
+ropes:
+  hoist_rope: {EA: 2.0e7, path: [T, HOOK]}
+members:
+  chords: {type: truss, pairs: [[A, C], [C, T], [B, E], [E, T], [A, E], [C, E]],
+           E: 2.1e+11, A: 0.004, rho: 7850, mass: lumped}
+springs:
+  - {name: tie, type: axial, nodes: [B, C], stiffness: 5.0e7}
+"""
+
+
+def test_truss_and_spring_structure_equals_the_linear_core(tmp_path):
+    """Trusses and an axial spring between structure nodes (the truss kernel): the
+    engine's frequencies at its static state against `cranefe modes`: 1.5e-4 at a tip
+    deflection of 2.6 mm, ten times less at a tenth of gravity (asserted 7-13): the
+    members' directions turn with the deflection (deflection / 6 m), which changes
+    their axial stiffness's directions at first order (the linear core keeps the
+    model's geometry)."""
+    gaps = []
+    for g in (G, G / 10):
+        m = load(write(tmp_path, TRUSS, "  duration: 1\n", name=f"tr{g}.yaml", GVAL=-g))
+        gaps.append(_linear_gap(m)[0])
+    assert gaps[0] < 3e-4 and 7 < gaps[0] / gaps[1] < 13
+
+
 # ----------------------------------------------------------------- spinning beam
 
 def _ritz(W, inplane, n=12):
@@ -275,7 +312,7 @@ def test_static_tip_deflection_under_gravity(tmp_path):
 
 # ----------------------------------------------------------------- energy, order
 
-def _release(tmp_path, tol, name, duration=0.25):
+def _release(tmp_path, tol, name, duration=0.15):
     model = jib(tmp_path, 2.0e-3, nel=2, name=name,
                 analysis=f"  duration: {duration}\n  tolerance: {tol}\n")
     mech = mechanism(model)
@@ -308,10 +345,10 @@ def test_energy_balance_with_a_prescribed_slewing(tmp_path):
     """A spin-up of the cantilever hub (trapezoid, 0.5 rad/s in 1 s, then steady): the
     hub's prescribed motion does work on the elastic beam (the power of the frame's
     motion `sum w . m (x'' - g)`, w the carried velocity); the balance closes to 1e-6
-    at tolerance 1e-9."""
-    model = load(write(tmp_path, ROTOR, "  duration: 3\n  tolerance: 1.0e-9\n  drives:\n"
+    at tolerance 1e-8 (2 elements, 2 s)."""
+    model = load(write(tmp_path, ROTOR, "  duration: 2\n  tolerance: 1.0e-8\n  drives:\n"
                        "    spin: {hinge: spin, profile: {type: trapezoid, distance: 1.0, "
-                       "v_max: 0.5, a_max: 0.5}}\n", name="spinup.yaml", NEL=4))
+                       "v_max: 0.5, a_max: 0.5}}\n", name="spinup.yaml", NEL=2))
     r = simulate(model)
     assert r.energy_error < 1e-6
     assert r.energy["work_drives"] > 0
@@ -323,7 +360,7 @@ def test_lean_does_not_claim_an_elastic_structure(tmp_path):
     model = jib(tmp_path)
     mech = mechanism(model)
     st = Stepper(mech, parse(model), model.length_scale)
-    assert type(st.ops) is Generic and not st.fast
+    assert isinstance(st.ops, Generic) and not st.fast
 
 
 @pytest.mark.parametrize("case, words", [
@@ -333,7 +370,8 @@ def test_lean_does_not_claim_an_elastic_structure(tmp_path):
 ])
 def test_refused_cases_exit_2(tmp_path, capsys, case, words):
     if case == "consistent":
-        path = write(tmp_path, JIB, "  duration: 1\n", IYVAL=2e-2, NEL=2, MASS="consistent")
+        path = write(tmp_path, JIB, "  duration: 1\n", IYVAL=2e-2, NEL=2, MASS="consistent",
+                     GVAL=-G)
     else:
         text = ROTOR.replace("  T: [10.0, 0, 0]\n", "  T: [10.0, 0, 0]\n  K: [5.0, 0, 0]\n")
         text = text.replace("joints:\n", "  trolley: {mass: 10, com: [5, 0, 0], inertia: "
@@ -349,14 +387,53 @@ def test_refused_cases_exit_2(tmp_path, capsys, case, words):
 
 
 def test_example_elastic_jib_crane(tmp_path):
-    """models/operations/elastic_jib_crane_cycle.yaml, its first 12 s (the hoist start
-    and stop and the slewing's start): the hoist rope's dynamic factor with the elastic
-    jib (pinned), the energy balance, and the rigid jib's smaller factor."""
+    """models/operations/elastic_jib_crane_cycle.yaml, its first 3 s (the hoist start,
+    where the largest rope force of the cycle is; the whole cycle runs in `cranefe study
+    operation_flexible`): the coordinates, the energy balance, the hoist rope's dynamic
+    factor (pinned: 1.1005, at 0.9 s)."""
     import dataclasses
     model = load(MODELS / "elastic_jib_crane_cycle.yaml")
-    model = dataclasses.replace(model, analysis={**model.analysis, "duration": 12.0})
+    model = dataclasses.replace(model, analysis={**model.analysis, "duration": 3.0})
     r = simulate(model)
     d = r.to_dict()
     assert d["dofs"] == 2 * 3 + 8 * 3 - 3
     assert r.energy_error < 1e-6
     assert d["dynamic_factor"]["hoist_rope"] == pytest.approx(1.0998, abs=2e-3)
+
+
+def test_study_operation_flexible_quick(tmp_path, capsys):
+    """`cranefe study operation_flexible --quick` (the example's first 3 s, rigid and
+    elastic jib): one row per structure, the elastic run has the jib's coordinates, both
+    energy balances close, the CSV's ratio is the two CPU times'."""
+    import csv
+    assert main(["study", "operation_flexible", "--quick", "--out", str(tmp_path)]) == 0
+    rows = list(csv.DictReader(open(tmp_path / "operation_flexible.csv")))
+    assert [r["structure"] for r in rows] == ["rigid", "elastic"]
+    rigid, elastic = rows
+    assert int(rigid["dofs"]) == 3 and int(elastic["dofs"]) == 27
+    assert all(float(r["energy_error"]) < 1e-6 for r in rows)
+    ratio = float(elastic["cpu_s"]) / float(rigid["cpu_s"])
+    assert float(elastic["cpu_vs_rigid"]) == pytest.approx(ratio, rel=1e-5)
+    assert abs(float(elastic["dynamic_factor"]) / float(rigid["dynamic_factor"]) - 1) < 0.01
+
+
+def test_stiff_structure_tends_to_the_rigid_engine(tmp_path):
+    """The example's first 3 s (the hoist start) with the jib 100 times stiffer (E and
+    G x 100) against the same crane made rigid (the jib's nodes on the superstructure,
+    `rigid_variant`, run by the rigid engine): the hoist rope's peak force and the
+    load's travel over the 3 s agree to the jib's remaining compliance: peak force
+    5.1e-5 (asserted 2e-4; 5e-5 also over the first 22 s, hoist and slew; the example's
+    own jib differs by 1.5e-3), travel 1.0e-3 of its 1 m (asserted 2e-3: the jib, even
+    100 times stiffer, is in series with the 2-fall rope (~8 % of its stiffness), which
+    shifts the phase of the hoisting mode's ringing at the end)."""
+    import dataclasses
+    from cranefe.studies.operation_flexible import rigid_variant
+    model = load(MODELS / "elastic_jib_crane_cycle.yaml")
+    model = dataclasses.replace(model, analysis={**model.analysis, "duration": 3.0})
+    stiff = dataclasses.replace(model, members=tuple(
+        dataclasses.replace(m, E=100 * m.E, G=100 * m.G) for m in model.members))
+    rig, el = simulate(rigid_variant(model)), simulate(stiff)
+    k = list(rig.rope_names).index("hoist_rope")
+    assert abs(el.rope_force_max[k] / rig.rope_force_max[k] - 1) < 2e-4
+    move = [r.mass_position[-1] - r.mass_position[0] for r in (el, rig)]
+    assert np.abs(move[0] - move[1]).max() < 2e-3 * np.abs(move[1]).max()

@@ -8,7 +8,7 @@ and with the same model made rigid (the jib's nodes carried by the superstructur
 `rigid_variant`). Per run: the peak force and dynamic factor of every rope, the load's
 largest and residual sway, steps, the energy balance error, CPU time and the real-time
 factor (simulated / CPU time); the elastic run's CPU time over the rigid one's from the
-same run. `--quick`: the first 6 s (the hoist start). Writes operation_flexible.csv and
+same run. `--quick`: the first 3 s (the hoist start). Writes operation_flexible.csv and
 operation_flexible.png (the hoist rope's force of both runs).
 """
 
@@ -27,7 +27,7 @@ from ._common import pyplot, save, write_csv
 DESCRIPTION = "operation scenes with an elastic structure: rope peak forces and cost " \
     "against the rigid structure"
 SCENES = (os.path.join("models", "operations", "elastic_jib_crane_cycle.yaml"),)
-QUICK_DURATION = 6.0
+QUICK_DURATION = 3.0
 
 
 def rigid_variant(model):

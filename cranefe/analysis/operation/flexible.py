@@ -251,46 +251,10 @@ class ElasticStructure:
             Gm.append(Gb)
             a.append(ab)
             kax.append(sec.E[b] * sec.A[b] / l[b])
-        tr = np.flatnonzero(~mm.beam)
-        pairs = [(mm.node[t, 0], mm.node[t, 1], sec.E[t] * sec.A[t] / l[t]) for t in tr]
-        names = model.node_names
-        el = set(self.en.tolist())
-        for s in model.springs:
-            if s.type != "axial" or not (set(s.nodes) & el):
-                continue
-            bad = [names[i] for i in s.nodes if i not in el and mech.carrier[i] == -2]
-            if bad or set(s.nodes) & set(mech.free.tolist()):
-                raise ModelError(f"spring '{s.name}' joins the elastic structure to a load or "
-                                 "a massless node; not solved by operation scenes yet",
-                                 self.file, f"springs.{s.name}")
-            pairs.append((s.nodes[0], s.nodes[1], s.stiffness))
-        if pairs:
-            Kt, Gt, at, it, kt = [], [], [], [], []
-            for p in pairs:
-                na, nb, ka = p
-                x = self.coords[[na, nb]]
-                dref = np.linalg.norm(x[1] - x[0])
-                # the truss kernel: k e e^T (N = 0) and (I - e e^T)/l (unit force, k = 0)
-                _, _, _, K6 = spring_state(x, [0], [1], np.array([ka]), np.array([dref]),
-                                           np.zeros(1))
-                _, _, _, G6 = spring_state(x, [0], [1], np.zeros(1), np.array([dref]),
-                                           np.ones(1))
-                ee = (x[1] - x[0]) / dref
-                K12, G12, a12 = np.zeros((12, 12)), np.zeros((12, 12)), np.zeros(12)
-                sel = np.r_[0:3, 6:9]
-                K12[np.ix_(sel, sel)], G12[np.ix_(sel, sel)] = K6, G6
-                a12[0:3], a12[6:9] = -ee, ee
-                ii = np.r_[6 * na + np.arange(6), 6 * nb + np.arange(6)]
-                Kt.append(K12)
-                Gt.append(G12)
-                at.append(a12)
-                it.append(zmap[ii])
-                kt.append(ka)
-            idx.append(np.array(it))
-            Km.append(np.array(Kt))
-            Gm.append(np.array(Gt))
-            a.append(np.array(at))
-            kax.append(np.array(kt))
+        part = self._trusses(mech, model, zmap, l)
+        if part is not None:
+            for lst, x in zip((idx, Km, Gm, a, kax), part):
+                lst.append(x)
         idx = np.concatenate(idx)
         self.eidx = np.where(idx < 0, self.nz, idx)          # -1 -> a padded zero
         self.eK = np.concatenate(Km)
@@ -320,6 +284,43 @@ class ElasticStructure:
                 s = np.flatnonzero(np.isin(ends, self.en[nodes]))
                 if len(s):
                     self.span_ends.append((f, s, self.where[ends[s]], sg))
+
+    def _trusses(self, mech, model, zmap, l):
+        """(indices, K, G, a, EA/l) of the trusses and of the axial springs between
+        structure nodes, as 12-DOF blocks (rotations zero): the truss kernel
+        `spring_state`, `k e e^T` (N = 0) and `(I - e e^T)/l` (unit force, k = 0)."""
+        mm, sec = self.mm, self.sec
+        tr = np.flatnonzero(~mm.beam)
+        pairs = [(mm.node[t, 0], mm.node[t, 1], sec.E[t] * sec.A[t] / l[t]) for t in tr]
+        el = set(self.en.tolist())
+        for s in model.springs:
+            if s.type != "axial" or not (set(s.nodes) & el):
+                continue
+            bad = [i for i in s.nodes if i not in el and mech.carrier[i] == -2]
+            if bad or set(s.nodes) & set(mech.free.tolist()):
+                raise ModelError(f"spring '{s.name}' joins the elastic structure to a load or "
+                                 "a massless node; not solved by operation scenes yet",
+                                 self.file, f"springs.{s.name}")
+            pairs.append((s.nodes[0], s.nodes[1], s.stiffness))
+        if not pairs:
+            return None
+        sel = np.r_[0:3, 6:9]
+        out = [[], [], [], [], []]
+        for na, nb, ka in pairs:
+            x = self.coords[[na, nb]]
+            dref = np.linalg.norm(x[1] - x[0])
+            _, _, _, K6 = spring_state(x, [0], [1], np.array([ka]), np.array([dref]),
+                                       np.zeros(1))
+            _, _, _, G6 = spring_state(x, [0], [1], np.zeros(1), np.array([dref]),
+                                       np.ones(1))
+            ee = (x[1] - x[0]) / dref
+            K12, G12, a12 = np.zeros((12, 12)), np.zeros((12, 12)), np.zeros(12)
+            K12[np.ix_(sel, sel)], G12[np.ix_(sel, sel)] = K6, G6
+            a12[0:3], a12[6:9] = -ee, ee
+            ii = np.r_[6 * na + np.arange(6), 6 * nb + np.arange(6)]
+            for lst, x_ in zip(out, (zmap[ii], K12, G12, a12, ka)):
+                lst.append(x_)
+        return tuple(np.array(x) for x in out)
 
     def _scatter2(self, blocks):
         nzp = self.nz + 1

@@ -4,7 +4,9 @@ Coordinates q: the Cartesian positions of the point masses not carried by bodies
 2 in a plane: xz model; with `sway: false` only the height), then the positions of
 joints driven by a torque, force or motor or free (the arc rho phi of a hinge, the
 travel of a slider; the bodies they carry enter by their exact kinetic energy,
-joints.py), then the angles of drums driven by a torque or a motor. A linear drive
+joints.py), then the displacements of the elastic structure's nodes in their body's
+frame (effects.structure: flexible; flexible.py), then the angles of drums driven by a
+torque or a motor. A linear drive
 moves its planar linkage kinematically (linkage.py). Bodies move rigidly by the prescribed joint motions
 (exact rotations, `cranefe.elements.hinge_motion`); a prescribed drum's angle is a known function
 of time; every other joint and drum is held. Ropes and axial springs that touch a
