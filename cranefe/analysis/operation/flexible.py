@@ -43,7 +43,7 @@ from ...coordinates.layout import Layout
 from ...coordinates.members import discretize
 from ...elements import beam_axes, to_global
 from ...elements.ropes import spring_state
-from ...errors import ModelError
+from ...errors import AnalysisError, ModelError
 from ...model.model import GROUND
 
 ELASTIC = -3          # Mechanism.carrier of an elastic node
@@ -528,12 +528,14 @@ class ElasticStructure:
             ev = mech.evaluate(0.0, q, v, taut, damping=False, powers=False)
             dq = np.linalg.solve(ev.K[np.ix_(idx, idx)], ev.F[idx])
             q[idx] += dq
-            if np.abs(dq).max() < 1e-13 * scale:
-                break
+            step = np.abs(dq).max()
+            if step <= 1e-12 * scale or (it > 10 and step <= 1e-9 * scale):
+                break                    # converged (or at the round-off floor)
         else:
-            raise ModelError("the static state of the elastic structure was not found (60 "
-                             "Newton iterations): a structure that gravity buckles, or "
-                             "members too soft", self.file, "members")
+            raise AnalysisError(f"the static state of the elastic structure of "
+                                f"{self.file} was not found (60 Newton iterations, last "
+                                f"correction {step:.3g} m): a structure that gravity "
+                                "buckles, or members too soft for their loads")
         ev = mech.evaluate(0.0, q, v, taut, damping=False, powers=False)
         mech.q0 = q
         mech.S0 = ev.S.copy()
