@@ -18,7 +18,8 @@ from cranefe.cli import main
 from cranefe.studies import NAMES
 
 SLOW = {"rendering", "performance",    # whole processes and renders: run by hand
-        "operations"}                   # checked in test_study_operations.py
+        "operations",                   # checked in test_study_operations.py
+        "operation_flexible"}           # checked in test_operation_flexible.py
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV_RTOL = 1e-5                         # 6 significant digits in the CSV
 EPS = np.finfo(float).eps

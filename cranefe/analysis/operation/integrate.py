@@ -20,7 +20,7 @@ from scipy.linalg.lapack import dgetrf, dgetri
 
 from ...errors import AnalysisError
 from . import fast as _fast
-from .lean import Lean, ops as _ops
+from .lean import Generic, Lean, ops as _ops
 from .mechanism import Mechanism
 from .results import Recorder
 from .scene import parse
@@ -74,10 +74,24 @@ class StepControl:
         return h * max(self.LO, self.SAFE * err ** (-1 / 3))
 
 
+class _FlexOps(Generic):
+    """`Generic` for a mechanism with an elastic structure (flexible.py): the ropes'
+    rows G = dL/dq of the step's force error include the elastic coordinates (their
+    span columns R(t) depend on the time)."""
+
+    def evaluate(self, t, q, v, taut, kin, tangent=True, full=True):
+        ev = super().evaluate(t, q, v, taut, kin, tangent, full)
+        nx = self.m.nx
+        ev._G[:, :nx] = ev._flex_G
+        return ev
+
+
 class Stepper:
     def __init__(self, mech, spec, lscale, fast=None):
         self.m, self.spec = mech, spec
-        self.ops = _ops(mech)
+        # an elastic structure (flexible.py) is evaluated by Mechanism itself: Lean's
+        # span vectors have no elastic columns
+        self.ops = _FlexOps(mech) if getattr(mech, "flex", None) is not None else _ops(mech)
         # the compiled step (fast.py) where Lean covers the mechanism and numba is
         # installed (fast=None), or as asked (fast=False: numpy, the reference)
         if fast is None:
@@ -99,7 +113,7 @@ class Stepper:
         # (ev.MJ, with its derivatives ev.dMJ); self.M has zeros there
         self.nJ = getattr(mech, "nJ", 0)
         if self.nJ:
-            self.jd = slice(mech.nc, mech.nx)
+            self.jd = mech.jb
             self.M = mech.M.copy()
             self.M[self.jd] = 0.0
         self.newton_tol = 1e-4 * spec.tolerance * lscale
@@ -174,7 +188,7 @@ class Stepper:
             err = max(err, ef)
         return err * (h * h / 12.0)
 
-    def step(self, t0, q0, v0, a0, h, taut, jerk=None):
+    def step(self, t0, q0, v0, a0, h, taut, jerk=None, left=False):
         """One trapezoidal step of length h -> (q1, v1, a1, ev1, err) or None.
 
         Newton's method from a predictor, on the tangent `4/h^2 M + 2/h C + K` made and
@@ -187,8 +201,13 @@ class Stepper:
         Predictor: the trapezoidal rule's own q1 = q0 + h v0 + h^2/4 (a0 + a1) with a1
         extrapolated as a0 + h jerk (jerk: the last step's (a0 - a_prev) / h_prev), so
         that the first correction is the extrapolation's O(h^4) error.
+        left: the step ends at a breakpoint of the prescribed motions and its end is
+        evaluated there from the left (the motions' accelerations before their jump:
+        a frame carrying an elastic structure, flexible.py, feeds them into the forces).
         """
         t1 = t0 + h
+        if left:
+            t1 = math.nextafter(t1, -math.inf)
         if self.fast:
             st, q1, v1, a1, err, its, tg, ev = self.ops.step(
                 t1, q0, v0, a0, h, taut, jerk, self.M, self.newton_tol, NEWTON_MAX,
@@ -269,6 +288,7 @@ def simulate(model, progress=None, initial=None, fast=None):
     lscale = model.length_scale
     st = Stepper(mech, spec, lscale, fast)
     T = spec.duration
+    flex = getattr(mech, "flex", None) is not None
     q = mech.q0.copy()
     v = np.zeros(mech.n)
     if initial is not None:
@@ -302,11 +322,13 @@ def simulate(model, progress=None, initial=None, fast=None):
             if t_next - t - hh < 1e-9 * hh:
                 hh = t_next - t
             # a step ending at a breakpoint sees the prescribed accelerations from the
-            # left (they act on joint coordinates through Kane's carried term); the next
-            # step starts from their right limits (below)
-            at_bp = bool(st.nJ) and hh == t_next - t and t_next < T
+            # left (they act on joint coordinates through Kane's carried term, and on an
+            # elastic structure through its frame's acceleration); the next step starts
+            # from their right limits (below); the end of the run counts as a
+            # breakpoint (a motion may change its segment there)
+            at_bp = (bool(st.nJ) or flex) and hh == t_next - t
             mech.left_at = t + hh if at_bp else None
-            out = st.step(t, q, v, a, hh, taut, jerk)
+            out = st.step(t, q, v, a, hh, taut, jerk, at_bp and flex)
             if out is None:
                 st.rejected += 1
                 h = hh * 0.25

@@ -5,7 +5,9 @@ Coordinates q: the Cartesian positions of the point masses not carried by bodies
 joints driven by a torque, force or motor or free (the arc rho phi of a hinge, the
 travel of a slider; the bodies they carry, with any joints moving below them, enter by
 their exact kinetic energy: a configuration- and time-dependent block M_J of the mass
-matrix, joints.JointChain), then the angles of drums driven by a torque or a motor. A linear drive
+matrix, joints.JointChain), then the displacements of the elastic structure's nodes in
+their body's frame (effects.structure: flexible; flexible.py), then the angles of drums
+driven by a torque or a motor. A linear drive
 moves its planar linkage kinematically (linkage.py). Bodies move rigidly by the prescribed joint motions
 (exact rotations, `cranefe.elements.hinge_motion`); a prescribed drum's angle is a known function
 of time; every other joint and drum is held. Ropes and axial springs that touch a
@@ -25,6 +27,7 @@ import numpy as np
 from ...errors import AnalysisError, ModelError
 from ...model.model import GROUND
 from ... import elements as kernels
+from . import flexible
 from .joints import JointChain, subtree_mass
 from .linkage import LinkageDrive
 
@@ -86,6 +89,8 @@ class Mechanism:
         self._chain_setup(model)
         self._joint_mass()
         self._static(model)
+        if self.flex is not None:        # the static state with the elastic structure
+            self.flex.settle(self)
 
     # ----------------------------------------------------------------- kinematics
     def _tree(self, model):
@@ -270,8 +275,12 @@ class Mechanism:
         st = self.chain.state(0.0, np.zeros(self.nJ), np.zeros(self.nJ), tangent=False)
         self.MJ = np.diag(st.M) + self.MJ_rotor
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
-                                 self.MJ, self.J])
+                                 self.MJ, self._Mu(), self.J])
         self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
+
+    def _Mu(self):
+        """The elastic nodes' lumped masses, one per elastic coordinate."""
+        return np.zeros(0) if self.flex is None else self.flex.Mu
 
     def _nodes(self, model):
         nn = self.nn
@@ -297,6 +306,14 @@ class Mechanism:
                                  "bodies: free bodies are not solved by operation scenes "
                                  "yet", model.file, f"bodies.{b.name}")
         self.carrier = carrier
+        # the elastic structure (effects.structure: flexible): member nodes no body
+        # carries get coordinates in their frame (flexible.py)
+        self.flex = None
+        if flexible.active(model):
+            fl = flexible.ElasticStructure(self, model)
+            if fl.nu:
+                self.flex = fl
+                carrier[fl.model_nodes] = flexible.ELASTIC
         mass_of = dict(zip(model.masses.nodes.tolist(), model.masses.mass.tolist()))
         self.free = np.array([i for i in model.masses.nodes if carrier[i] == -2], dtype=int)
         self.free_mass = np.array([mass_of[i] for i in self.free])
@@ -357,11 +374,12 @@ class Mechanism:
         free = set(self.free.tolist())
         kin = set(self.kin.tolist())
         ok = free | kin
+        elastic = set() if self.flex is None else set(self.flex.model_nodes.tolist())
         file = model.scene_file or model.file
         act, a, b, f, rid = [], [], [], [], []
         for k, rp in enumerate(model.ropes):
             nodes = set(rp.span_a.tolist()) | set(rp.span_b.tolist())
-            if not nodes & (free | self.jnodes):
+            if not nodes & (free | self.jnodes | elastic):
                 continue
             bad = nodes - ok
             if bad:
@@ -426,12 +444,16 @@ class Mechanism:
                         f"nodes.{model.node_names[i]}")
                 dirs.append((k, self.up.copy()))
         self.nc = len(dirs)                 # Cartesian coordinates of the point masses
-        self.nx = self.nc + self.nJ         # coordinates in metres (then drum angles)
+        self.nu = 0 if self.flex is None else self.flex.nu    # elastic structure
+        self.nx = self.nc + self.nJ + self.nu   # coordinates in metres (then drum angles)
+        self.jb = slice(self.nc, self.nc + self.nJ)     # the joint coordinates
         E = np.zeros((3 * nf, self.nc))
         for c, (k, ax) in enumerate(dirs):
             E[3 * k:3 * k + 3, c] = ax
         self.E = E
         self.qx_ref = E.T @ model.coords[self.free].ravel()
+        if self.flex is not None:
+            self.flex.setup(self, model)
         # with sway off: the kinematic root each mass's horizontal position follows
         self.root = np.array([self._root(model, k) for k in range(nf)], dtype=int)
 
@@ -491,7 +513,7 @@ class Mechanism:
         self.J = np.array([model.drums[k].reduced_inertia for k in self.qdrums])
         self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
-                                 np.zeros(self.nJ), self.J])
+                                 np.zeros(self.nJ), self._Mu(), self.J])
         self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
 
     # ----------------------------------------------------------------- state at t
@@ -529,8 +551,8 @@ class Mechanism:
         their tangents, energies, and the positions and derivatives of the nodes they
         carry. At t == `left_at` (a step ending at a breakpoint of a prescribed drive)
         the prescribed accelerations are their limits from the left."""
-        nc, nx = self.nc, self.nx
-        st = self.chain.state(t, q[nc:nx], v[nc:nx], left=(t == self.left_at),
+        jb = self.jb
+        st = self.chain.state(t, q[jb], v[jb], left=(t == self.left_at),
                               tangent=tangent)
         st.M = st.M + np.diag(self.MJ_rotor)
         return st
@@ -553,8 +575,7 @@ class Mechanism:
         """Add gravity, Kane's inertia terms (Coriolis, centrifugal, carried
         accelerations) and the drive of every joint coordinate to F (and their
         derivatives to K, C); return the drives' torques (N m) or forces (N)."""
-        nc, nx = self.nc, self.nx
-        jd = slice(nc, nx)
+        nc, jd = self.nc, self.jb
         F[jd] += js.F
         K[jd, jd] += js.K
         C[jd, jd] += js.C
@@ -580,13 +601,13 @@ class Mechanism:
         constant diagonal and the joint coordinates' block M_J(u, t) (ev.MJ)."""
         M = np.diag(self.M)
         if self.nJ:
-            M[self.nc:self.nx, self.nc:self.nx] = ev.MJ
+            M[self.jb, self.jb] = ev.MJ
         return M
 
     def joint_accel(self, ev):
         """The joint coordinates' accelerations M_J^-1 F_J of an evaluated state (the
         loads are decoupled from them in the mass matrix)."""
-        return np.linalg.solve(ev.MJ, ev.F[self.nc:self.nx])
+        return np.linalg.solve(ev.MJ, ev.F[self.jb])
 
     def _joint_power(self, ev, js, q, v):
         """Power of the joint drives (torque x speed) and of the prescribed parents on
@@ -699,6 +720,8 @@ class Mechanism:
                     if own:
                         X[idx] = Xg
                         V[idx] = Vg
+        if self.flex is not None:
+            self.flex.place(self, t, q, v, X, V)
         nf = len(self.free)
         if nf:
             P = (self.E @ q[:self.nc]).reshape(nf, 3)
@@ -747,7 +770,8 @@ class Mechanism:
         if len(self.rope_drum):
             np.add.at(self.Rd, (self.rope_drum, self.drum_of_end), self.end_radius)
         self.Fg = np.concatenate([self.E.T @ (np.repeat(self.free_mass, 3) *
-                                              np.tile(self.g, nf)), np.zeros(self.nJ)])
+                                              np.tile(self.g, nf)), np.zeros(self.nJ),
+                                  np.zeros(self.nu)])
         self.free3 = (3 * self.free[:, None] + np.arange(3)).ravel()
 
     def evaluate(self, t, q, v, taut, kin=None, damping=True, powers=True):
@@ -771,7 +795,9 @@ class Mechanism:
         if self.nJ:
             D, DJJ, XJ = self._joint_spans(jm)
         else:
-            D = self.D
+            D, XJ = self.D, None
+        if self.flex is not None:                # the elastic nodes' columns R
+            D = self.flex.spans(self, t, D)
         eD = np.einsum("si,sij->sj", e, D)                   # (ns, nx) e_s . D_s
         G = self.A @ (self.falls[:, None] * eD)              # (nr, nx) dL/dq_x
         Rd = self.Rd
@@ -785,17 +811,20 @@ class Mechanism:
         # tangent: EA/L G^T G + sum f S / l (I - e e^T) on the span ends
         # (kernels.projected_tangent, w = f S / l, with the constant D_s^T D_s made once)
         w = self.falls * S[self.span_rope] / l
-        if self.nJ:
+        jt = None
+        if self.nJ or self.flex is not None:
             # the span vectors depend on the joint coordinates too: D_s^T D_s changes,
-            # and d^2L/du_i du_k gains f e . (d^2 Delta / du_i du_k)
+            # and d^2L/du_i du_k gains f e . (d^2 Delta / du_i du_k); elastic nodes: D_s
+            # has R(t)
             K[:nx, :nx] = (G.T * cL) @ G + np.einsum("s,sia,sib->ab", w, D, D) \
                 - (eD.T * w) @ eD
-            K[nc:nx, nc:nx] += np.einsum("s,si,sijk->jk", w * l, e, DJJ)
-            jt = self._joint_forces(t, q, v, jm, F, K, C)
+            if self.nJ:
+                jb = self.jb
+                K[jb, jb] += np.einsum("s,si,sijk->jk", w * l, e, DJJ)
+                jt = self._joint_forces(t, q, v, jm, F, K, C)
         else:
             K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) \
                 - (eD.T * w) @ eD
-            jt = XJ = None
         # damping: b = psi c / (2 pi w), c = EA/L, w the rope's axial frequency now
         Sd = np.zeros(nr)
         b = np.zeros(nr)
@@ -804,7 +833,7 @@ class Mechanism:
             if self.nJ:
                 # a joint coordinate's mass with the others held: the current M_J's diagonal
                 invM = invM.copy()
-                invM[nc:] = 1.0 / np.diag(jm.M)
+                invM[self.jb] = 1.0 / np.diag(jm.M)
             w2 = cL * ((G * G) @ invM)
             for cc, k in enumerate(self.qdrums):
                 w2 = w2 + cL * Rd[:, k] ** 2 / self.J[cc]
@@ -861,10 +890,16 @@ class Mechanism:
                 spring = (rs, 0.0)
         else:
             spring = None
+        if self.flex is not None:                # elastic, gravity, frame inertia
+            self.flex.forces(self, t, q, v, F, K, C)
         ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
                   None, None, None, joint_torque=jt)
         if self.nJ:
             ev.MJ, ev.dMJ = jm.M, jm.dM
+        if self.flex is not None:                # the ropes' force on u (power)
+            o = nc + self.nJ
+            ev._flex_rope = -(G[:, o:o + self.nu].T @ (S + Sd))
+            ev._flex_G = G                       # dL/dq_x (the step's force error)
         ev._ctx = (fe, lam, taut, spring, (jm, XJ, q, v))
         if powers:
             self.powers(ev)
@@ -889,7 +924,7 @@ class Mechanism:
             # the nodes a joint coordinate carries: only the prescribed part of their
             # velocity is fed in from outside (the rest is the coordinate's own motion)
             V = V.copy()
-            vJ = v[self.nc:self.nx]
+            vJ = v[self.jb]
             for idx, _, _, xj, _, own in jm.groups:
                 if own:
                     V[idx] -= xj @ vJ
@@ -913,6 +948,8 @@ class Mechanism:
         P += float(ev.drive_torque @ omega)
         if self.nJ:
             P += self._joint_power(ev, jm, q, v)
+        if self.flex is not None:
+            P += self.flex.power(self, ev, q, v)
         # loads without sway are guided horizontally with their carrier: the guidance
         # does the work of their horizontal kinetic energy (the ropes hang vertically)
         T_guided = 0.0
@@ -937,11 +974,16 @@ class Mechanism:
         if self.nJ:
             dT, dV = self._joint_energy(ev)
             T, Vg = T + dT, Vg + dV
+        if self.flex is not None:
+            dT, dV, dU = self.flex.energy(self, ev.t, ev._ctx[4][2], ev._ctx[4][3])
+            T, Vg = T + dT, Vg + dV
         with np.errstate(invalid="ignore", divide="ignore"):
             U = float(np.where(taut, kernels.hencky_energy(self.EA, ev.L, ev.L0), 0.0).sum())
         if len(self.sp_k):
             d = np.linalg.norm(ev.X[self.sp_b] - ev.X[self.sp_a], axis=1) - self.sp_dref
             U += float((self.N_ref * d + 0.5 * self.sp_k * d * d).sum())
+        if self.flex is not None:
+            U += dU
         return T, Vg, U
 
     # ----------------------------------------------------------------- static state
@@ -978,7 +1020,7 @@ class Mechanism:
             l = np.linalg.norm(X[self.span_b] - X[self.span_a], axis=1)
             e = (X[self.span_b] - X[self.span_a]) / l[:, None]
             GJ = self.A @ (self.falls[:, None] *
-                           np.einsum("si,sij->sj", e, D[:, :, self.nc:]))
+                           np.einsum("si,sij->sj", e, D[:, :, self.jb]))
             QgJ = jm.Fg.copy()
         free_j = [c for c, jc in enumerate(self.jc) if jc["drive"].kind == "free"]
         G = np.hstack([G, GJ[:, free_j]])

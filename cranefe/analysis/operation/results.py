@@ -353,6 +353,7 @@ class Recorder:
             else:
                 labels += [f"{nm}.{a}" for a in ("xz" if model.planar else "xyz")]
         labels += [f"joint {jc['drive'].name}" for jc in m.jc]      # m, or arc m
+        labels += [] if getattr(m, "flex", None) is None else m.flex.labels()
         labels += [f"drum {model.drums[k].name}" for k in m.qdrums]
         return OperationResult(
             model.name, model.scene or "", model.effects.as_dict(), tuple(labels),
