@@ -45,7 +45,6 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ...errors import AnalysisError
 from . import fast as _fast
 
 SAFE, LO, HI = 0.9, 0.2, 2.0                 # integrate.StepControl
@@ -91,7 +90,7 @@ def _kin(t, kd):
     loads and the drums written out in loops for the compiler (one block each)."""
     (mt, mseg, moff, ch_par, ch_drv, ch_sign, ch_hinge, ch_K, ch_K2, ch_point, ch_axis,
      g_ent, g_off, g_idx, g_Xr, X0, sway, free, root, X0f, X0r, H, free_mass, span_a,
-     span_b, kin_a, kin_b, pd_k, pd_mot, nd, L0_ref, W, Rd, E) = kd
+     span_b, kin_a, kin_b, pd_k, pd_mot, nd, L0_ref, W, Rd, _E) = kd
     nmot = moff.shape[0] - 1
     ms = np.empty((nmot, 2))
     for i in range(nmot):
@@ -217,8 +216,7 @@ def _kin(t, kd):
 def _trial(t, q, v, a, h, taut, jerk, has_jerk, kd, fd, M, newton_tol, newton_max,
            fscale, sfloor, tol):
     """fast._step at t + h with the kinematics there."""
-    (Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope, damped, lam_ref,
-     wound) = fd
+    Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope, damped = fd[:11]
     kt = _kin(t + h, kd)
     return _fast._step(q, v, a, h, jerk, has_jerk, Dm, kt[2], kt[3], Af, extra, kt[7],
                        EA, kt[8], taut, psi, invM, Fg, D, falls, span_rope, damped, M,
@@ -228,8 +226,7 @@ def _trial(t, q, v, a, h, taut, jerk, has_jerk, kd, fd, M, newton_tol, newton_ma
 @_jit
 def _powers(out, kt, taut, fd):
     """Lean.powers -> (P_drive, P_diss, P_wound)."""
-    (Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope, damped, lam_ref,
-     wound) = fd
+    Af, EA, lam_ref, wound = fd[1], fd[3], fd[11], fd[12]
     e, lam, loglam, S, Sd, edot = out[3], out[5], out[6], out[7], out[8], out[9]
     vkin, romega = kt[4], kt[8]
     nr = S.shape[0]
@@ -508,8 +505,7 @@ def _run(t_stop, T, bps, max_step, hmin, max_steps, newton_tol, newton_max, tol,
                 ev_t[ne], ev_k[ne], ev_s[ne] = t, k, taut[k]
             ist[I_NEV] = ne + 1
             # a, ev = Stepper.accel(t, q, v, taut): the forces with the new taut set
-            (Dm, Af, extra, EA, psi, invM, Fgv, D, falls, span_rope, damped, lam_ref,
-             wound) = fd
+            Dm, Af, extra, EA, psi, invM, Fgv, D, falls, span_rope, damped = fd[:11]
             kt = _kin(t, kd)
             K0 = np.zeros((0, 0))
             ev = _fast._forces(q, v, Dm, kt[2], kt[3], Af, extra, kt[7], EA, kt[8], taut,
@@ -724,8 +720,8 @@ def _fill(st, rec, m, dmap, fs, ist, peak, peak_t, s_t, s_X, s_F, s_mot, ev_t, e
     names = m.model.ropes
     for i in range(min(int(ist[I_NEV]), len(ev_t))):
         k = int(ev_k[i])
-        st.events.append((float(ev_t[i]), f"rope {names[m.ropes[k]].name} "
-                                          f"{'taut' if ev_s[i] else 'slack'}"))
+        state = "taut" if ev_s[i] else "slack"
+        st.events.append((float(ev_t[i]), f"rope {names[m.ropes[k]].name} {state}"))
     rec.peak, rec.peak_t = peak.tolist(), peak_t.tolist()
     rec.W, rec.D, rec.Wd = float(fs[F_W]), float(fs[F_D]), float(fs[F_WD])
     rec.max_terms = [max(rec.max_terms[0], fs[F_MT0]), max(rec.max_terms[1], fs[F_MT1]),
