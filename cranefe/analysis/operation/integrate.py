@@ -231,8 +231,9 @@ def simulate(model, progress=None, initial=None, fast=None):
     initial : optional dict {"q": (n,), "v": (n,)} replacing the static state (for tests
         and scripts: e.g. a load already on its steady slewing orbit); the ropes' unstretched
         lengths stay those of the static state.
-    fast : None (default): the compiled step of fast.py when numba is installed and the
-        mechanism is one `Lean` covers; False: the numpy step (the reference).
+    fast : None (default): the whole loop compiled (loop.py) when numba is installed and
+        the mechanism is one `Lean` covers; False: the numpy step (the reference);
+        "step": the compiled step of fast.py in the Python loop (for measurements).
 
     Length: the time-stepping loop with its step control and event location in one
     frame, as the transient engine's Newmark loop.
@@ -268,7 +269,7 @@ def simulate(model, progress=None, initial=None, fast=None):
     jerk = None                  # (a0 - a_prev) / h_prev of the last accepted step
     bi = 0
     try:
-        prep = _loop.prepare(st, spec) if st.fast else None
+        prep = _loop.prepare(st, spec) if st.fast and fast != "step" else None
         if prep is not None:            # the whole loop compiled (loop.py), same steps
             t = _loop.run(st, rec, spec, prep, t, q, v, ev, taut, progress, hmin,
                           NEWTON_MAX, MAX_STEPS, lambda *a: _fail(mech, *a))

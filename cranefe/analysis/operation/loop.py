@@ -139,9 +139,16 @@ def _kin(t, kd):
             R[i], dR[i], P[i], dP[i] = Rj, dRj, pj, dpj
         else:
             Rp, dRp, pp, dpp = R[pe], dR[pe], P[pe], dP[pe]
-            if ch_hinge[i]:
-                R[i] = Rp @ Rj
-                dR[i] = dRp @ Rj + Rp @ dRj
+            if ch_hinge[i]:                       # R_p R_j, R_p' R_j + R_p R_j'
+                for x in range(3):
+                    for y in range(3):
+                        a1 = 0.0
+                        a2 = 0.0
+                        for z in range(3):
+                            a1 += Rp[x, z] * Rj[z, y]
+                            a2 += dRp[x, z] * Rj[z, y] + Rp[x, z] * dRj[z, y]
+                        R[i, x, y] = a1
+                        dR[i, x, y] = a2
             else:
                 R[i], dR[i] = Rp, dRp
             for x in range(3):
@@ -207,8 +214,17 @@ def _kin(t, kd):
     for i in range(pd_k.shape[0]):
         theta[pd_k[i]] = ms[pd_mot[i], 0]
         omega[pd_k[i]] = ms[pd_mot[i], 1]
-    L0 = L0_ref - W @ theta if nd else L0_ref.copy()
-    romega = Rd @ omega if nd else np.zeros(L0_ref.shape[0])
+    nr = L0_ref.shape[0]
+    L0 = L0_ref.copy()
+    romega = np.zeros(nr)
+    for r in range(nr):
+        a1 = 0.0
+        a2 = 0.0
+        for k in range(nd):
+            a1 += W[r, k] * theta[k]
+            a2 += Rd[r, k] * omega[k]
+        L0[r] -= a1
+        romega[r] = a2
     return Xk, Vk, dk, dvk, vkin, theta, omega, L0, romega, Tg, ms
 
 
