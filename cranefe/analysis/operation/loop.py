@@ -38,6 +38,11 @@ the chunk's end, so chunks do not change the steps), and fills the Recorder and 
 Stepper's counters as the Python loop would, so that `Recorder.result` builds the same
 OperationResult; a failure (Newton or the step collapsing, two-blocking, too many
 steps) raises the AnalysisError of the Python loop, with the results up to it kept.
+
+Compiled with `cache=True`: the first call compiles for ~50 s of CPU, later processes load
+the cache. numba's cache of this module's functions does not notice an edit of fast.py,
+whose `_step` and `_forces` they compile in: after editing fast.py, touch this file (or
+delete its __pycache__) so that both are compiled afresh.
 """
 
 import math
