@@ -227,3 +227,163 @@ def test_compiled_step_equals_the_numpy_step(name, effects):
                     np.testing.assert_allclose(w, u, rtol=0, atol=1e-12 * s)
                 assert y[4] == pytest.approx(x[4], rel=1e-9, abs=1e-12)
                 assert y[3].P_drive == pytest.approx(x[3].P_drive, rel=1e-12, abs=1e-9)
+
+
+# ---- the compiled loop (loop.py) against the numpy loop (the reference) ----
+
+def _scene(name, duration, starts=None, **effects):
+    """A bundled scene cut to `duration`, its drives' (first) moves started at `starts`."""
+    model = load(OPS / name)
+    if effects:
+        model = model.with_effects(**effects)
+    a = dict(model.analysis, duration=duration)
+    if starts:
+        drives = {k: dict(v) for k, v in a["drives"].items()}
+        for k, t0 in starts.items():
+            p = drives[k]["profile"]
+            drives[k]["profile"] = [{**p[0], "start": t0}] + list(p[1:]) \
+                if isinstance(p, list) else {**p, "start": t0}
+        a["drives"] = drives
+    return dataclasses.replace(model, analysis=a)
+
+
+def _snatch(duration):
+    """The tower crane (hoist at rest until 10 s) with the hook thrown up at 2 m/s and the
+    load at 2.5 m/s: both ropes go slack and taut again, events located in the step."""
+    model = _scene("tower_crane_cycle.yaml", duration, {"hoist": 10.0})
+    mech = Mechanism(model, parse(model))
+    v = np.zeros(mech.n)
+    v[2], v[5] = 2.0, 2.5                      # z of the hook, z of the load
+    return model, {"q": mech.q0, "v": v}
+
+
+def _same_run(a, b, rel):
+    """Every reported number of two runs, to `rel` of each quantity's scale."""
+    assert (a.steps, a.rejected, a.newton_iterations) == \
+        (b.steps, b.rejected, b.newton_iterations)
+    assert [w for _, w in a.events] == [w for _, w in b.events]
+    np.testing.assert_allclose([t for t, _ in b.events], [t for t, _ in a.events],
+                               rtol=rel, atol=0)
+    assert a.warnings == b.warnings and a.status == b.status
+    np.testing.assert_array_equal(a.times, b.times)
+    for k in ("rope_force_max", "rope_force_max_time", "sway_max_deg",
+              "sway_residual_deg", "mass_position", "rope_force", "drive_position",
+              "drive_speed", "drive_torque", "sway_deg"):
+        x, y = getattr(a, k), getattr(b, k)
+        scale = np.nanmax(np.abs(x), initial=0.0) + 1e-300
+        np.testing.assert_allclose(y, x, rtol=0, atol=rel * scale, err_msg=k)
+    E = max(abs(x) for x in a.energy.values())
+    for k in a.energy:
+        assert b.energy[k] == pytest.approx(a.energy[k], rel=0, abs=rel * E), k
+    assert b.energy_error == pytest.approx(a.energy_error, rel=1e-3, abs=rel)
+    da, db = a.to_dict(), b.to_dict()
+    assert da.keys() == db.keys()
+    for k in ("model", "scene", "effects", "coordinates", "events_total", "status",
+              "message", "warnings", "steps", "rejected_steps", "newton_iterations"):
+        assert da[k] == db[k], k
+
+
+needs_numba = pytest.mark.skipif(not fast.available(),
+                                 reason="numba not installed (extra 'fast')")
+
+
+@needs_numba
+@pytest.mark.parametrize("case", ["three drives", "three drives, sway off",
+                                  "three drives, no damping", "emergency stop",
+                                  "slack and taut"])
+def test_compiled_loop_equals_the_numpy_loop(case):
+    """loop.py's compiled loop against integrate.simulate's Python loop with the numpy
+    step (fast=False, the reference): the same formulas in the same order up to the
+    summation order of a few products, so the runs take the same steps and report the
+    same numbers to rounding amplified over the run. Cases: hoisting, trolley travel
+    and slewing at once (the prescribed hinge and slider composed along the chain, the
+    drum's L0), with sway off (guided loads: T_guided) and without damping (2.5 s,
+    ~490 steps: measured differences <= 2.4e-9 of each quantity's scale, asserted
+    1e-7); the overhead crane's emergency stop (20 s, 1038 steps: measured equal to
+    the last bit); both ropes thrown slack and taut again (0.5 s, 7 events located by
+    regula falsi: measured equal to the last bit). Asserted: the steps, rejections and
+    Newton iterations equal, every event, warning, peak, history, energy term."""
+    if case == "slack and taut":
+        model, initial = _snatch(0.5)
+    else:
+        initial = None
+        model = _scene("overhead_crane_estop.yaml", 20) if case == "emergency stop" \
+            else _scene("tower_crane_cycle.yaml", 2.5, {"trolley": 0.5, "slewing": 1.0},
+                        **({"sway": False} if "sway" in case else {}),
+                        **({"damping": "none"} if "damping" in case else {}))
+    a = simulate(model, fast=False, initial=initial)
+    b = simulate(model, initial=initial)
+    assert b.timings and a.steps > 100
+    if case == "slack and taut":
+        assert len([e for e in a.events if "slack" in e[1]]) >= 2
+    _same_run(a, b, 1e-7)
+
+
+@needs_numba
+def test_compiled_loop_with_progress_takes_the_same_steps():
+    """With a progress callback the compiled loop runs in 200 chunks (Python between
+    them calls back): a chunk ends after the step that passes its end, so the steps and
+    every number are those of one call (compared exactly), and the callback sees the
+    time grow to the end."""
+    model, initial = _snatch(1.0)
+    seen = []
+    a = simulate(model, initial=initial)
+    b = simulate(model, initial=initial, progress=lambda t, T: seen.append((t, T)))
+    _same_run(a, b, 0.0)
+    assert len(seen) >= 100 and seen[-1][0] == pytest.approx(1.0)
+    assert all(np.diff([x[0] for x in seen]) >= 0)
+
+
+@needs_numba
+def test_compiled_loop_on_the_whole_cycle():
+    """The tower-crane cycle (110 s; tolerance 1e-6, 9 700 steps, to keep the numpy run
+    to ~3 s) by both loops: rounding makes their steps part after a few seconds (an
+    accept/reject or Newton stop within rounding of its threshold, then two equally
+    valid step sequences), so they agree to the integration's accuracy, not to
+    rounding. Measured: peak forces 6.6e-5 apart, sway 1.3e-4 deg, positions 2.9e-5 m,
+    steps 9 710 / 9 641; asserted a tenth of each path's own error against the
+    reference at this tolerance (4.3e-3, 7.2e-3 deg, 9.5e-4 m; docs/operations.md
+    "Accuracy and cost"): 4e-4, 7e-4 deg, 1e-4 m; steps within 2 %, the same events."""
+    model = load(OPS / "tower_crane_cycle.yaml")
+    model = dataclasses.replace(model, analysis={**model.analysis, "tolerance": 1e-6})
+    a, b = simulate(model, fast=False), simulate(model)
+    assert abs(a.steps - b.steps) < 0.02 * a.steps
+    assert a.events == b.events
+    np.testing.assert_allclose(b.rope_force_max, a.rope_force_max, rtol=4e-4)
+    np.testing.assert_allclose(b.sway_max_deg, a.sway_max_deg, rtol=0, atol=7e-4)
+    np.testing.assert_allclose(b.sway_residual_deg, a.sway_residual_deg, rtol=0,
+                               atol=7e-4)
+    np.testing.assert_allclose(b.mass_position, a.mass_position, rtol=0, atol=1e-4)
+    assert b.energy_error < 1e-6 and a.energy_error < 1e-6
+
+
+@needs_numba
+@pytest.mark.parametrize("failure", ["newton", "too many steps", "two-blocking"])
+def test_compiled_loop_fails_as_the_numpy_loop(failure, monkeypatch):
+    """A failed run stops with the same AnalysisError (message naming the time) and
+    keeps the same results up to it in both loops: Newton never converging (NEWTON_MAX
+    = 1: the step collapses at t = 0), more than MAX_STEPS (= 60) steps, and a span
+    shorter than 1 % of its reference length (two-blocking; provoked by a reference
+    length 100x the span's, so that the hoisting's first steps trip it: the bundled
+    scenes' profiles cannot haul a hook into its sheave, scene.py refuses them)."""
+    from cranefe.analysis.operation import integrate
+    from cranefe.errors import AnalysisError
+    model = _scene("tower_crane_cycle.yaml", 2.0)
+    if failure == "newton":
+        monkeypatch.setattr(integrate, "NEWTON_MAX", 1)
+    elif failure == "too many steps":
+        monkeypatch.setattr(integrate, "MAX_STEPS", 60)
+    else:
+        class Short(Mechanism):
+            def __init__(self, *a, **k):
+                super().__init__(*a, **k)
+                self.span_ref = self.span_ref * 100.0
+        monkeypatch.setattr(integrate, "Mechanism", Short)
+    out = []
+    for f in (False, None):
+        with pytest.raises(AnalysisError) as exc:
+            simulate(model, fast=f)
+        out.append((str(exc.value), exc.value.result))
+    (ma, a), (mb, b) = out
+    assert ma == mb and "t = " in ma and a.status == b.status == 1
+    _same_run(a, b, 1e-9)

@@ -21,7 +21,9 @@ iteration and the local error estimate of the step - in one compiled function
 
 `Lean` stays the reference: tests/test_operation_speed.py steps both from the same
 states and asserts the same q1, a1, forces and error to 1e-12. Without numba
-(`pip install 'cranefe[fast]'`) the integrator uses `Lean` and `Stepper.step`.
+(`pip install 'cranefe[fast]'`) the integrator uses `Lean` and `Stepper.step`. With
+numba the integrator runs the whole loop compiled (loop.py, which calls `_step`); this
+step inside the Python loop remains as `simulate(model, fast="step")`.
 """
 
 import math

@@ -20,6 +20,7 @@ from scipy.linalg.lapack import dgetrf, dgetri
 
 from ...errors import AnalysisError
 from . import fast as _fast
+from . import loop as _loop
 from .lean import Generic, Lean, ops as _ops
 from .mechanism import Mechanism
 from .results import Recorder
@@ -276,8 +277,9 @@ def simulate(model, progress=None, initial=None, fast=None):
     initial : optional dict {"q": (n,), "v": (n,)} replacing the static state (for tests
         and scripts: e.g. a load already on its steady slewing orbit); the ropes' unstretched
         lengths stay those of the static state.
-    fast : None (default): the compiled step of fast.py when numba is installed and the
-        mechanism is one `Lean` covers; False: the numpy step (the reference).
+    fast : None (default): the whole loop compiled (loop.py) when numba is installed and
+        the mechanism is one `Lean` covers; False: the numpy step (the reference);
+        "step": the compiled step of fast.py in the Python loop (for measurements).
 
     Length: the time-stepping loop with its step control and event location in one
     frame, as the transient engine's Newmark loop.
@@ -314,6 +316,10 @@ def simulate(model, progress=None, initial=None, fast=None):
     jerk = None                  # (a0 - a_prev) / h_prev of the last accepted step
     bi = 0
     try:
+        prep = _loop.prepare(st, spec) if st.fast and fast != "step" else None
+        if prep is not None:            # the whole loop compiled (loop.py), same steps
+            t = _loop.run(st, rec, spec, prep, t, q, v, ev, taut, progress, hmin,
+                          NEWTON_MAX, MAX_STEPS, lambda *a: _fail(mech, *a))
         while t < T * (1 - 1e-14):
             while bi < len(bps) and bps[bi] <= t * (1 + 1e-14) + 1e-14:
                 bi += 1
@@ -456,6 +462,18 @@ def _two_blocking(mech, l, t):
             f"is down to {l[k]:.3g} m ({l[k] / mech.span_ref[k]:.1%} of its length): the "
             "load was hauled into its sheave (two-blocking); likely cause: a drive torque "
             f"far above what holds the load; the results up to t = {t:.6g} s are kept")
+
+
+def _fail(mech, status, t, h, taut, l):
+    """The Python loop's AnalysisError for a failed status of the compiled loop."""
+    if status == _loop.NEWTON:
+        raise _blowup(t, h, "Newton's method does not converge", mech, None, taut)
+    if status == _loop.COLLAPSE:
+        raise _blowup(t, h, "the step size collapsed", mech, None, taut)
+    if status == _loop.TWO_BLOCK:
+        _two_blocking(mech, l, t)
+    raise AnalysisError(f"more than {MAX_STEPS} steps at t = {t:.6g} s; raise "
+                        "analysis.tolerance")
 
 
 def _blowup(t, h, what, mech, ev, taut):
