@@ -19,6 +19,7 @@ from scipy.linalg.lapack import dgetrf, dgetri
 
 from ...errors import AnalysisError
 from . import fast as _fast
+from .constraints import ConstrainedStepper
 from .lean import Lean, ops as _ops
 from .mechanism import Mechanism
 from .results import Recorder
@@ -223,6 +224,16 @@ class Stepper:
     def stretch(self, ev):
         return np.log(ev.L / ev.L0)
 
+    def limit(self, t, q, v, a, ev, taut):
+        """At a breakpoint of the drives: the state's limit from the right (a, ev,
+        jumped); elastic ropes: continuous."""
+        return a, ev, False
+
+    def switch(self, t, q, v, taut, k):
+        """After rope k went slack or taut: (v, note, work, dissipated) of a jump
+        (none for elastic ropes; ConstrainedStepper jerks an inextensible rope taut)."""
+        return v, "", 0.0, 0.0
+
 
 def simulate(model, progress=None, initial=None, fast=None):
     """Integrate the operation scene of `model` -> `OperationResult`.
@@ -240,7 +251,7 @@ def simulate(model, progress=None, initial=None, fast=None):
     spec = parse(model)
     mech = Mechanism(model, spec)
     lscale = model.length_scale
-    st = Stepper(mech, spec, lscale, fast)
+    st = (ConstrainedStepper if mech.inextensible else Stepper)(mech, spec, lscale, fast)
     T = spec.duration
     q = mech.q0.copy()
     v = np.zeros(mech.n)
@@ -249,6 +260,8 @@ def simulate(model, progress=None, initial=None, fast=None):
         v = np.asarray(initial.get("v", v), float).copy()
     taut = mech.taut0.copy()
     t = 0.0
+    if mech.inextensible:       # a given initial state, made consistent with the ropes
+        q, v = st.consistent(t, q, v, taut)
     a, ev = st.accel(t, q, v, taut)
     rec = Recorder(mech, spec, st.ops)
     t_setup = time.perf_counter()
@@ -304,7 +317,10 @@ def simulate(model, progress=None, initial=None, fast=None):
                 taut = taut.copy()
                 taut[k] = ~taut[k]
                 name = model.ropes[mech.ropes[k]].name
-                st.events.append((t, f"rope {name} {'taut' if taut[k] else 'slack'}"))
+                tight = taut[k]
+                v, note, dW, dD = st.switch(t, q, v, taut, k)
+                rec.W, rec.D = rec.W + dW, rec.D + dD
+                st.events.append((t, f"rope {name} {'taut' if tight else 'slack'}{note}"))
                 a, ev = st.accel(t, q, v, taut)
                 rec.switch(t, ev, taut)
                 st.steps += 1
@@ -315,6 +331,10 @@ def simulate(model, progress=None, initial=None, fast=None):
             rec.accept(t, q, v, a, ev, t + hh, q1, v1, a1, ev1, taut)
             jerk = (a1 - a) / hh
             t, q, v, a, ev = t + hh, q1, v1, a1, ev1
+            a, ev, jumped = st.limit(t, q, v, a, ev, taut)
+            if jumped:              # inextensible ropes: the force jumps with a drive
+                rec.switch(t, ev, taut)
+                jerk = None
             st.steps += 1
             _two_blocking(mech, st.ops.span_lengths(ev), t)
             mech.check_range(ev, t)

@@ -65,10 +65,6 @@ class Mechanism:
         self.up = -g / gn if gn > 0 else np.array([0.0, 0.0, 1.0])
         self.sway = model.effects.sway
         self.warnings = []
-        if not model.effects.rope_elasticity:
-            raise ModelError("operation scenes with inextensible ropes (rope_elasticity: "
-                             "false) are not built yet; use elastic ropes (a stiff EA)",
-                             model.scene_file or file, "effects.rope_elasticity")
         if model.effects.rope_mass:
             self.warnings.append("rope_mass is not used by operation scenes yet: ropes are "
                                  "massless")
@@ -82,6 +78,9 @@ class Mechanism:
         self._chain_setup(model)
         self._joint_mass()
         self._static(model)
+        self.inextensible = not model.effects.rope_elasticity
+        if self.inextensible:
+            self._inextensible(model)
 
     # ----------------------------------------------------------------- kinematics
     def _tree(self, model):
@@ -1007,6 +1006,22 @@ class Mechanism:
         self.hold_torque = np.zeros(self.nd)
         for j, dd, R in zip(self.rope_drum, self.drum_of_end, self.end_radius):
             self.hold_torque[dd] += R * S0[j]
+
+    def _inextensible(self, model):
+        """Ropes as inextensible constraints L(q, t) = L0(t) (rope_elasticity: false;
+        constraints.py, docs/operations.md "Inextensible ropes"): the rope is not
+        stretched, so L0_ref = L_ref and a drum winds R theta of it (lambda_ref = 1).
+        What the constraint formulation does not cover yet is refused (exit 2)."""
+        file = model.scene_file or model.file
+        if self.nJ:
+            d = self.jc[0]["drive"]
+            raise ModelError(f"drive '{d.name}' makes {model.joints[self.jc[0]['joint']].label}"
+                             " a coordinate: joint coordinates with inextensible ropes "
+                             "(rope_elasticity: false) are not solved yet; use elastic "
+                             "ropes or prescribe the joint's motion with a profile", file,
+                             "effects.rope_elasticity")
+        self.lam_ref = np.ones(len(self.ropes))
+        self.L0_ref = self.L_ref.copy()
 
     def _warn_held_joints(self, model, GJ):
         """A torque- or motor-driven joint is held at rest like a drum: its holding
