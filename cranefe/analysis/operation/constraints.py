@@ -370,3 +370,47 @@ class ConstrainedStepper:
 
     def span_lengths(self, ev):
         return ev._geo["l"]
+
+
+# ------------------------------------------------------------------ massless blocks
+# A free node without mass (a hook block whose mass is neglected, a free sheave) is a
+# coordinate y with M = 0: its rows of the trapezoidal Newton system are the equilibrium
+# F_y(t, q) = 0 of the falls and springs on it (algebraic), solved with the others. Its
+# velocity is not the trapezoidal rule's v1 = 2 (q1 - q0) / h - v0, which for an algebraic
+# unknown alternates from step to step, but the implicit function's: d/dt F_y = 0 gives
+# K_yy v_y = dF_y/dt along (t, q_x, v_x) with y held (docs/operations.md "Massless
+# blocks").
+
+def algebraic_velocity(st, t, q, v, a, v0, h, ev, taut):
+    """(v, a) with the massless blocks' velocities from the implicit function at (t, q)
+    (K_yy v_y = D, D the forward difference of F_y along (1, v_x, 0) over 1e-7 of the
+    duration; F has no velocity terms on those rows: damping is refused with them) and
+    their accelerations as the difference of the velocities (for the predictor only)."""
+    y = st.qy
+    dl = 1e-7 * max(st.spec.duration, 1.0)
+    vh = v.copy()
+    vh[y] = 0.0
+    e2 = st.ops.evaluate(t + dl, q + dl * vh, vh, taut, st.ops.kin(t + dl))
+    D = (e2.F[y] - ev.F[y]) / dl
+    v = v.copy()
+    v[y] = np.linalg.solve(ev.K[np.ix_(y, y)], D)
+    a = a.copy()
+    a[y] = (v[y] - v0[y]) / h
+    return v, a
+
+
+def algebraic_state(st, t, q, v, taut):
+    """The massless blocks moved into equilibrium (Newton on F_y = 0 with K_yy) and
+    their velocities by the implicit function, at a given (t, q, v)."""
+    y = st.qy
+    q = q.copy()
+    kin = st.ops.kin(t)
+    for _ in range(50):
+        ev = st.ops.evaluate(t, q, v, taut, kin)
+        dy = np.linalg.solve(ev.K[np.ix_(y, y)], ev.F[y])
+        q[y] += dy
+        if np.abs(dy).max() <= 1e-14 * st.lscale:
+            break
+    ev = st.ops.evaluate(t, q, v, taut, kin)
+    return q, algebraic_velocity(st, t, q, v, np.zeros_like(v), v, 1.0, ev, taut)[0]
+

@@ -19,8 +19,8 @@ from scipy.linalg.lapack import dgetrf, dgetri
 
 from ...errors import AnalysisError
 from . import fast as _fast
-from .constraints import ConstrainedStepper
-from .lean import Lean, ops as _ops
+from .constraints import ConstrainedStepper, algebraic_state, algebraic_velocity
+from .lean import Generic, Lean, ops as _ops
 from .mechanism import Mechanism
 from .results import Recorder
 from .scene import parse
@@ -77,7 +77,10 @@ class StepControl:
 class Stepper:
     def __init__(self, mech, spec, lscale, fast=None):
         self.m, self.spec = mech, spec
-        self.ops = _ops(mech)
+        # massless blocks (algebraic rows, M = 0): Mechanism.evaluate (Lean does not
+        # cover them)
+        self.qy = mech.qy if len(getattr(mech, "qy", ())) else None
+        self.ops = _ops(mech) if self.qy is None else Generic(mech)
         # the compiled step (fast.py) where Lean covers the mechanism and numba is
         # installed (fast=None), or as asked (fast=False: numpy, the reference)
         if fast is None:
@@ -114,7 +117,17 @@ class Stepper:
 
     def accel(self, t, q, v, taut):
         ev = self.ops.evaluate(t, q, v, taut, self.kin(t), tangent=False)
+        if self.qy is not None:      # massless rows: no acceleration of their own
+            return np.divide(ev.F, self.M, out=np.zeros_like(ev.F), where=self.M > 0), \
+                self.ops.powers(ev)
         return ev.F / self.M, self.ops.powers(ev)
+
+    def consistent(self, t, q, v, taut):
+        """A massless block's position in equilibrium and its velocity by the implicit
+        function (a given initial state; the static state already is)."""
+        if self.qy is None:
+            return q, v
+        return algebraic_state(self, t, q, v, taut)
 
     def _factor(self, ev, c1, c2):
         J = ev.K + c2 * ev.C
@@ -138,6 +151,9 @@ class Stepper:
         (G = dL/dq: the elongation error times the axial stiffness), over
         `FORCE_TOL x tolerance x` the larger of its static and its current force."""
         da = a1 - a0
+        if self.qy is not None:         # massless blocks follow the others' positions
+            da = da.copy()
+            da[self.qy] = 0.0
         err = float(np.abs(da if self.wq is None else da * self.wq).max(initial=0.0))
         err /= self.tol
         if self.fscale is not None:
@@ -201,7 +217,10 @@ class Stepper:
                 # O(dq^2); the forces of this iterate serve the recorder
                 q1 = q1 + dq
                 a1 = c1 * (q1 - qb) - a0
-                return q1, c2 * (q1 - q0) - v0, a1, ev, self.error(h, a0, a1, ev, taut)
+                v1 = c2 * (q1 - q0) - v0
+                if self.qy is not None:     # massless blocks: v by the implicit function
+                    v1, a1 = algebraic_velocity(self, t1, q1, v1, a1, v0, h, ev, taut)
+                return q1, v1, a1, ev, self.error(h, a0, a1, ev, taut)
             if not fresh and dq_norm > 0.1 * prev:
                 Jinv = None                      # slow: a fresh tangent next iteration
             prev = dq_norm
@@ -260,8 +279,8 @@ def simulate(model, progress=None, initial=None, fast=None):
         v = np.asarray(initial.get("v", v), float).copy()
     taut = mech.taut0.copy()
     t = 0.0
-    if mech.inextensible:       # a given initial state, made consistent with the ropes
-        q, v = st.consistent(t, q, v, taut)
+    if mech.inextensible or initial is not None:    # a given state made consistent
+        q, v = st.consistent(t, q, v, taut)           # (ropes, massless blocks)
     a, ev = st.accel(t, q, v, taut)
     rec = Recorder(mech, spec, st.ops)
     t_setup = time.perf_counter()

@@ -322,6 +322,7 @@ class Mechanism:
         Length: gathers every element kind's arrays (ropes, springs, point masses,
         drums) in the order the state vector lists them.
         """
+        self._massless_nodes(model)
         free = set(self.free.tolist())
         kin = set(self.kin.tolist())
         ok = free | kin
@@ -399,6 +400,9 @@ class Mechanism:
         for c, (k, ax) in enumerate(dirs):
             E[3 * k:3 * k + 3, c] = ax
         self.E = E
+        # coordinates of massless blocks: algebraic (equilibrium) rows
+        self.qy = np.array([c for c, (k, _) in enumerate(dirs) if self.free_mass[k] == 0],
+                           dtype=int)
         self.qx_ref = E.T @ model.coords[self.free].ravel()
         # with sway off: the kinematic root each mass's horizontal position follows
         self.root = np.array([self._root(model, k) for k in range(nf)], dtype=int)
@@ -413,6 +417,43 @@ class Mechanism:
                         "coordinate; its horizontal inertia on that joint is not solved "
                         "yet: turn sway on (or prescribe the joint's motion)", file,
                         jc["drive"].entry)
+
+    def _massless_nodes(self, model):
+        """Free nodes without mass that ropes or axial springs join to the point masses
+        or to the bodies of joint coordinates (a hook block whose mass is neglected, a
+        free sheave): coordinates whose position is the equilibrium of the falls and
+        springs on them at every instant (docs/operations.md "Massless blocks"),
+        appended to the point masses with mass 0."""
+        ends = [set(rp.span_a.tolist()) | set(rp.span_b.tolist()) for rp in model.ropes]
+        ends += [set(s.nodes) for s in model.springs if s.type == "axial"]
+        reach = set(self.free.tolist()) | self.jnodes
+        new = []
+        grow = True
+        while grow:
+            grow = False
+            for nodes in ends:
+                if not nodes & reach:
+                    continue
+                for i in sorted(nodes - reach):
+                    if self.carrier[i] == -2:
+                        new.append(i)
+                        reach.add(i)
+                        grow = True
+        if not new:
+            return
+        file = model.scene_file or model.file
+        names = ", ".join(model.node_names[i] for i in new)
+        if model.effects.damping != "none":
+            raise ModelError(f"the massless node(s) {names} with damping: a dashpot on a "
+                             "massless block makes its velocity a differential, not an "
+                             "algebraic, unknown; not solved yet: give the block a mass "
+                             "(masses) or set damping: none", file, "effects.damping")
+        if not model.effects.rope_elasticity:
+            raise ModelError(f"the massless node(s) {names} with inextensible ropes: not "
+                             "solved yet; give the block a mass (masses) or use elastic "
+                             "ropes", file, "effects.rope_elasticity")
+        self.free = np.concatenate([self.free, np.array(new, dtype=int)])
+        self.free_mass = np.concatenate([self.free_mass, np.zeros(len(new))])
 
     def _above(self, model, i):
         """The node a point mass hangs from: the other end of its highest rope span or
