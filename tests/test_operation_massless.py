@@ -7,11 +7,11 @@ instant, and what is not solved with them is refused."""
 import numpy as np
 import pytest
 import scipy.linalg as sla
+from test_operation import mechanism, scene
 
+from cranefe.analysis.operation.integrate import simulate
 from cranefe.cli import main
 from cranefe.model import load
-from cranefe.analysis.operation.integrate import simulate
-from test_operation import mechanism, scene
 
 G = 9.81
 BLOCK = """cranefe: 1

@@ -110,7 +110,7 @@ def index3_pendulum(h, duration):
     lam = m * G * np.cos(TH0)
     a = (F - lam * e) / m
     err = []
-    for _ in range(int(round(duration / h))):
+    for _ in range(round(duration / h)):
         q1, lam1 = q + h * v + 0.5 * h * h * a, lam
         for _ in range(50):
             a1 = 4 / h ** 2 * (q1 - q - h * v) - a
@@ -144,8 +144,9 @@ def formulation_rows(outdir, quick=False):
     this engine's (projected index-1) rope force (tolerance 0.009, so that max_step = h
     sets every step); largest error / (m g) over the run and its oscillating part."""
     import tempfile
-    from ..model import load
+
     from ..analysis.operation.integrate import simulate
+    from ..model import load
     dur = 7.0          # one period and a bit (6.8 s)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -212,9 +213,9 @@ def _plot(outdir, hist):
 
 def markdown(rows):
     """The measured table of docs/operations.md (from the CSV's rows)."""
-    lines = ["| scene | variant | steps (rejected) | CPU [s] | CPU / reference | "
-             "position [m] | sway [deg] | sway residual [deg] | peak force | "
-             "dynamic factor |", "|---|---|---|---|---|---|---|---|---|---|"]
+    lines = [("| scene | variant | steps (rejected) | CPU [s] | CPU / reference | "
+              "position [m] | sway [deg] | sway residual [deg] | peak force | "
+              "dynamic factor |"), "|---|---|---|---|---|---|---|---|---|---|"]
 
     def e(x):
         x = float(x)
@@ -230,8 +231,8 @@ def markdown(rows):
 
 
 def formulation_markdown(rows):
-    lines = ["| step [s] | index-3 trapezoidal: error | its oscillating part | this engine: "
-             "error | its oscillating part |", "|---|---|---|---|---|"]
+    lines = [("| step [s] | index-3 trapezoidal: error | its oscillating part | this "
+              "engine: error | its oscillating part |"), "|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {float(r['step_s']):g} | {float(r['index3_error']):.1e} | "
                      f"{float(r['index3_oscillation']):.1e} | "
@@ -244,7 +245,8 @@ def write_docs(docs, rows, form):
     path = os.path.join(docs, "operations.md")
     if not os.path.exists(path):
         return []
-    text = open(path).read()
+    with open(path) as fh:
+        text = fh.read()
     for (begin, end), md in (((BEGIN, END), markdown(rows)),
                              ((BEGIN_F, END_F), formulation_markdown(form))):
         if begin not in text or end not in text:

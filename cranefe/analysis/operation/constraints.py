@@ -132,8 +132,8 @@ class ConstrainedStepper:
         gs = m.falls * (np.einsum("si,si->s", e, dA) + (np.einsum("si,si->s", dV, dV)
                                                          - edV ** 2) / l)
         gamma = m.A @ gs + m.Rd @ kin[3][:, 2]
-        return dict(X=X, V=V, theta=theta, omega=omega, l=l, e=e, eD=eD, L=L, L0=L0,
-                    G=G, gdot=gdot, gamma=gamma)
+        return {"X": X, "V": V, "theta": theta, "omega": omega, "l": l, "e": e, "eD": eD,
+                "L": L, "L0": L0, "G": G, "gdot": gdot, "gamma": gamma}
 
     def _tension_stiffness(self, geo, S):
         """d(G^T S)/dq = sum f S / l D^T (I - e e^T) D (drum columns: constant R)."""
@@ -233,7 +233,7 @@ class ConstrainedStepper:
         m = self.m
         t1 = t0 + h
         kt = self.kin_side(t1, -1)
-        M, Minv, wq = self.M, self.Minv, self.wq
+        M, wq = self.M, self.wq
         c1, c2 = 4.0 / (h * h), 2.0 / h
         q1 = q0 + h * v0 + (0.5 * h * h) * a0
         if jerk is not None:

@@ -57,7 +57,6 @@ class Eval:
 class Mechanism:
     def __init__(self, model, spec):
         self.model, self.spec = model, spec
-        file = model.file
         self.nn = len(model.node_names)
         g = np.asarray(model.gravity, float)
         self.g = g
