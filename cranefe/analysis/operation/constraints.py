@@ -37,7 +37,7 @@ import math
 
 import numpy as np
 
-from ...errors import ModelError
+from ...errors import AnalysisError, ModelError
 from .lean import _TimeCache
 
 NEWTON_MAX = 12
@@ -201,7 +201,11 @@ class ConstrainedStepper:
 
     def consistent(self, t, q, v, taut):
         """(q, v) projected onto the taut ropes' constraints (a given initial state)."""
-        return self.project(t, q, v, np.flatnonzero(taut), self.kin(t))
+        out = self.project(t, q, v, np.flatnonzero(taut), self.kin(t))
+        if out is None:
+            raise AnalysisError("the initial state cannot be projected onto the ropes' "
+                                "lengths (Newton did not converge): start nearer to them")
+        return out
 
     def project(self, t, q, v, act, kin, once=False):
         """M-orthogonal projection onto g = 0 (Newton, G at each iterate) and g' = 0.
@@ -283,11 +287,14 @@ class ConstrainedStepper:
             return None
         a1 = c1 * (q1 - qb) - a0
         err = self.error(h, a0, a1)
-        pr = self.project(t1, q1, c2 * (q1 - q0) - v0, act, kt, once=True)
-        if pr is None:
+        try:                    # constraints become dependent: a shorter step, or stop
+            pr = self.project(t1, q1, c2 * (q1 - q0) - v0, act, kt, once=True)
+            if pr is None:
+                return None
+            q1, v1 = pr
+            ev1 = self.state(t1, q1, v1, taut, kt, side=-1)
+        except np.linalg.LinAlgError:
             return None
-        q1, v1 = pr
-        ev1 = self.state(t1, q1, v1, taut, kt, side=-1)
         self._Sguess = ev1.S
         return q1, v1, ev1._a, ev1, err
 
