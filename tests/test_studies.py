@@ -309,8 +309,36 @@ def check_loads(files):
     assert all(int(r["variants"]) > 0 for r in read(files["loads_throughput.csv"]))
 
 
+def check_operation_effects(files):
+    # reference rows differ from themselves by 0; without sway on the emergency stop the
+    # load keeps its height (inextensible: exactly; the trolley runs horizontally), so
+    # the dynamic factor is 1 and the sway error is the reference's largest sway; the
+    # fixed-step pendulum: both formulations of order 2 (error ratio 4 per halving,
+    # 3.5-4.5), the index-3 multiplier >10x worse and alternating (its oscillating part
+    # > 0.9 of its error), the engine's smooth (< 1e-3 of its error)
+    rows = read(files["operation_effects.csv"])
+    for r in rows:
+        if r["variant"].startswith("elastic"):
+            assert num(r["position_error_m"]) == 0 and num(r["peak_force_difference"]) == 0
+    ref = {r["scene"]: r for r in rows if r["variant"].startswith("elastic")}
+    stop = next(r for r in rows if r["scene"] == "overhead_crane_estop"
+                and r["variant"] == "inextensible, no sway")
+    assert num(stop["dynamic_factor"]) == pytest.approx(1.0, abs=CSV_RTOL)
+    assert num(stop["sway_error_deg"]) > 1.0
+    assert all(int(r["steps"]) > 0 and num(r["cpu_s"]) > 0 for r in rows) and len(ref) == 2
+    form = read(files["operation_effects_formulation.csv"])
+    for a, b in zip(form[:-1], form[1:]):
+        for k in ("index3_error", "engine_error"):
+            assert 3.5 < num(a[k]) / num(b[k]) < 4.5, (k, a, b)
+    for r in form:
+        assert num(r["index3_error"]) > 10 * num(r["engine_error"])
+        assert num(r["index3_oscillation"]) > 0.9 * num(r["index3_error"])
+        assert num(r["engine_oscillation"]) < 1e-3 * num(r["engine_error"])
+
+
 CHECKS = {"damping": check_damping, "drive": check_drive, "eigensolvers": check_eigensolvers,
           "loads": check_loads, "luffing": check_luffing, "operation_speed": check_operation_speed,
+          "operation_effects": check_operation_effects,
           "ropes": check_ropes, "shaping": check_shaping, "structure": check_structure,
           "sweeps": check_sweeps,
           "transient": check_transient, "validation": check_validation}

@@ -21,6 +21,7 @@ from scipy.linalg.lapack import dgetrf, dgetri
 from ...errors import AnalysisError
 from . import fast as _fast
 from . import loop as _loop
+from .constraints import ConstrainedStepper, algebraic_state, algebraic_velocity
 from .lean import Generic, Lean, ops as _ops
 from .mechanism import Mechanism
 from .results import Recorder
@@ -91,8 +92,13 @@ class Stepper:
     def __init__(self, mech, spec, lscale, fast=None):
         self.m, self.spec = mech, spec
         # an elastic structure (flexible.py) is evaluated by Mechanism itself: Lean's
-        # span vectors have no elastic columns
-        self.ops = _FlexOps(mech) if getattr(mech, "flex", None) is not None else _ops(mech)
+        # span vectors have no elastic columns; massless blocks (algebraic rows, M = 0)
+        # likewise: Lean does not cover them
+        self.qy = mech.qy if len(getattr(mech, "qy", ())) else None
+        if getattr(mech, "flex", None) is not None:
+            self.ops = _FlexOps(mech)
+        else:
+            self.ops = _ops(mech) if self.qy is None else Generic(mech)
         # the compiled step (fast.py) where Lean covers the mechanism and numba is
         # installed (fast=None), or as asked (fast=False: numpy, the reference)
         if fast is None:
@@ -137,9 +143,11 @@ class Stepper:
 
     def accel(self, t, q, v, taut):
         ev = self.ops.evaluate(t, q, v, taut, self.kin(t), tangent=False)
-        if self.nJ:
-            a = ev.F / np.where(self.M > 0, self.M, 1.0)
-            a[self.jd] = np.linalg.solve(ev.MJ, ev.F[self.jd])
+        if self.nJ or self.qy is not None:
+            # joint coordinates: their block solved; massless rows: no acceleration
+            a = np.divide(ev.F, self.M, out=np.zeros_like(ev.F), where=self.M > 0)
+            if self.nJ:
+                a[self.jd] = np.linalg.solve(ev.MJ, ev.F[self.jd])
             return a, self.ops.powers(ev)
         return ev.F / self.M, self.ops.powers(ev)
 
@@ -149,6 +157,13 @@ class Stepper:
         if self.nJ:
             Ma[self.jd] += ev.MJ @ a[self.jd]
         return Ma
+
+    def consistent(self, t, q, v, taut):
+        """A massless block's position in equilibrium and its velocity by the implicit
+        function (a given initial state; the static state already is)."""
+        if self.qy is None:
+            return q, v
+        return algebraic_state(self, t, q, v, taut)
 
     def _factor(self, ev, c1, c2, a1=None):
         J = ev.K + c2 * ev.C
@@ -179,6 +194,9 @@ class Stepper:
         (G = dL/dq: the elongation error times the axial stiffness), over
         `FORCE_TOL x tolerance x` the larger of its static and its current force."""
         da = a1 - a0
+        if self.qy is not None:         # massless blocks follow the others' positions
+            da = da.copy()
+            da[self.qy] = 0.0
         err = float(np.abs(da if self.wq is None else da * self.wq).max(initial=0.0))
         err /= self.tol
         if self.fscale is not None:
@@ -247,7 +265,10 @@ class Stepper:
                 # O(dq^2); the forces of this iterate serve the recorder
                 q1 = q1 + dq
                 a1 = c1 * (q1 - qb) - a0
-                return q1, c2 * (q1 - q0) - v0, a1, ev, self.error(h, a0, a1, ev, taut)
+                v1 = c2 * (q1 - q0) - v0
+                if self.qy is not None:     # massless blocks: v by the implicit function
+                    v1, a1 = algebraic_velocity(self, t1, q1, v1, a1, v0, h, ev, taut)
+                return q1, v1, a1, ev, self.error(h, a0, a1, ev, taut)
             if not fresh and dq_norm > 0.1 * prev:
                 Jinv = None                      # slow: a fresh tangent next iteration
             prev = dq_norm
@@ -270,6 +291,16 @@ class Stepper:
     def stretch(self, ev):
         return np.log(ev.L / ev.L0)
 
+    def limit(self, t, q, v, a, ev, taut):
+        """At a breakpoint of the drives: the state's limit from the right (a, ev,
+        jumped); elastic ropes: continuous."""
+        return a, ev, False
+
+    def switch(self, t, q, v, taut, k):
+        """After rope k went slack or taut: (v, note, work, dissipated) of a jump
+        (none for elastic ropes; ConstrainedStepper jerks an inextensible rope taut)."""
+        return v, "", 0.0, 0.0
+
 
 def simulate(model, progress=None, initial=None, fast=None):
     """Integrate the operation scene of `model` -> `OperationResult`.
@@ -288,7 +319,7 @@ def simulate(model, progress=None, initial=None, fast=None):
     spec = parse(model)
     mech = Mechanism(model, spec)
     lscale = model.length_scale
-    st = Stepper(mech, spec, lscale, fast)
+    st = (ConstrainedStepper if mech.inextensible else Stepper)(mech, spec, lscale, fast)
     T = spec.duration
     flex = getattr(mech, "flex", None) is not None
     q = mech.q0.copy()
@@ -298,6 +329,8 @@ def simulate(model, progress=None, initial=None, fast=None):
         v = np.asarray(initial.get("v", v), float).copy()
     taut = mech.taut0.copy()
     t = 0.0
+    if mech.inextensible or initial is not None:    # a given state made consistent
+        q, v = st.consistent(t, q, v, taut)           # (ropes, massless blocks)
     a, ev = st.accel(t, q, v, taut)
     rec = Recorder(mech, spec, st.ops)
     t_setup = time.perf_counter()
@@ -364,7 +397,10 @@ def simulate(model, progress=None, initial=None, fast=None):
                 taut = taut.copy()
                 taut[k] = ~taut[k]
                 name = model.ropes[mech.ropes[k]].name
-                st.events.append((t, f"rope {name} {'taut' if taut[k] else 'slack'}"))
+                tight = taut[k]
+                v, note, dW, dD = st.switch(t, q, v, taut, k)
+                rec.W, rec.D = rec.W + dW, rec.D + dD
+                st.events.append((t, f"rope {name} {'taut' if tight else 'slack'}{note}"))
                 a, ev = st.accel(t, q, v, taut)
                 rec.switch(t, ev, taut)
                 st.steps += 1
@@ -378,6 +414,10 @@ def simulate(model, progress=None, initial=None, fast=None):
             if at_bp:
                 mech.left_at = None
                 a, ev = st.accel(t, q, v, taut)       # the right limits
+                jumped = True
+            else:       # inextensible ropes: the force jumps with a drive's acceleration
+                a, ev, jumped = st.limit(t, q, v, a, ev, taut)
+            if jumped:
                 rec.switch(t, ev, taut)
                 jerk = None
             st.steps += 1

@@ -63,7 +63,6 @@ class Eval:
 class Mechanism:
     def __init__(self, model, spec):
         self.model, self.spec = model, spec
-        file = model.file
         self.nn = len(model.node_names)
         g = np.asarray(model.gravity, float)
         self.g = g
@@ -72,10 +71,6 @@ class Mechanism:
         self.sway = model.effects.sway
         self.warnings = []
         self.left_at = None          # a breakpoint approached from the left (joint_motions)
-        if not model.effects.rope_elasticity:
-            raise ModelError("operation scenes with inextensible ropes (rope_elasticity: "
-                             "false) are not built yet; use elastic ropes (a stiff EA)",
-                             model.scene_file or file, "effects.rope_elasticity")
         if model.effects.rope_mass:
             self.warnings.append("rope_mass is not used by operation scenes yet: ropes are "
                                  "massless")
@@ -89,6 +84,9 @@ class Mechanism:
         self._chain_setup(model)
         self._joint_mass()
         self._static(model)
+        self.inextensible = not model.effects.rope_elasticity
+        if self.inextensible:
+            self._inextensible(model)
         if self.flex is not None:        # the static state with the elastic structure
             self.flex.settle(self)
 
@@ -371,6 +369,7 @@ class Mechanism:
         Length: gathers every element kind's arrays (ropes, springs, point masses,
         drums) in the order the state vector lists them.
         """
+        self._massless_nodes(model)
         free = set(self.free.tolist())
         kin = set(self.kin.tolist())
         ok = free | kin
@@ -451,11 +450,51 @@ class Mechanism:
         for c, (k, ax) in enumerate(dirs):
             E[3 * k:3 * k + 3, c] = ax
         self.E = E
+        # coordinates of massless blocks: algebraic (equilibrium) rows
+        self.qy = np.array([c for c, (k, _) in enumerate(dirs) if self.free_mass[k] == 0],
+                           dtype=int)
         self.qx_ref = E.T @ model.coords[self.free].ravel()
         if self.flex is not None:
             self.flex.setup(self, model)
         # with sway off: the kinematic root each mass's horizontal position follows
         self.root = np.array([self._root(model, k) for k in range(nf)], dtype=int)
+
+    def _massless_nodes(self, model):
+        """Free nodes without mass that ropes or axial springs join to the point masses
+        or to the bodies of joint coordinates (a hook block whose mass is neglected, a
+        free sheave): coordinates whose position is the equilibrium of the falls and
+        springs on them at every instant (docs/operations.md "Massless blocks"),
+        appended to the point masses with mass 0."""
+        ends = [set(rp.span_a.tolist()) | set(rp.span_b.tolist()) for rp in model.ropes]
+        ends += [set(s.nodes) for s in model.springs if s.type == "axial"]
+        reach = set(self.free.tolist()) | self.jnodes
+        new = []
+        grow = True
+        while grow:
+            grow = False
+            for nodes in ends:
+                if not nodes & reach:
+                    continue
+                for i in sorted(nodes - reach):
+                    if self.carrier[i] == -2:
+                        new.append(i)
+                        reach.add(i)
+                        grow = True
+        if not new:
+            return
+        file = model.scene_file or model.file
+        names = ", ".join(model.node_names[i] for i in new)
+        if model.effects.damping != "none":
+            raise ModelError(f"the massless node(s) {names} with damping: a dashpot on a "
+                             "massless block makes its velocity a differential, not an "
+                             "algebraic, unknown; not solved yet: give the block a mass "
+                             "(masses) or set damping: none", file, "effects.damping")
+        if not model.effects.rope_elasticity:
+            raise ModelError(f"the massless node(s) {names} with inextensible ropes: not "
+                             "solved yet; give the block a mass (masses) or use elastic "
+                             "ropes", file, "effects.rope_elasticity")
+        self.free = np.concatenate([self.free, np.array(new, dtype=int)])
+        self.free_mass = np.concatenate([self.free_mass, np.zeros(len(new))])
 
     def _above(self, model, i):
         """The node a point mass hangs from: the other end of its highest rope span or
@@ -1078,6 +1117,27 @@ class Mechanism:
         self.hold_torque = np.zeros(self.nd)
         for j, dd, R in zip(self.rope_drum, self.drum_of_end, self.end_radius):
             self.hold_torque[dd] += R * S0[j]
+
+    def _inextensible(self, model):
+        """Ropes as inextensible constraints L(q, t) = L0(t) (rope_elasticity: false;
+        constraints.py, docs/operations.md "Inextensible ropes"): the rope is not
+        stretched, so L0_ref = L_ref and a drum winds R theta of it (lambda_ref = 1).
+        What the constraint formulation does not cover yet is refused (exit 2)."""
+        file = model.scene_file or model.file
+        if self.nJ:
+            d = self.jc[0]["drive"]
+            raise ModelError(f"drive '{d.name}' makes {model.joints[self.jc[0]['joint']].label}"
+                             " a coordinate: joint coordinates with inextensible ropes "
+                             "(rope_elasticity: false) are not solved yet; use elastic "
+                             "ropes or prescribe the joint's motion with a profile", file,
+                             "effects.rope_elasticity")
+        if self.flex is not None:
+            raise ModelError("an elastic structure (effects.structure: flexible) with "
+                             "inextensible ropes (rope_elasticity: false) is not solved "
+                             "yet; use elastic ropes or a rigid structure", file,
+                             "effects.rope_elasticity")
+        self.lam_ref = np.ones(len(self.ropes))
+        self.L0_ref = self.L_ref.copy()
 
     def _warn_held_joints(self, model, GJ):
         """A torque- or motor-driven joint is held at rest like a drum: its holding
