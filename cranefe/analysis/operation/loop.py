@@ -40,9 +40,10 @@ OperationResult; a failure (Newton or the step collapsing, two-blocking, too man
 steps) raises the AnalysisError of the Python loop, with the results up to it kept.
 
 Compiled with `cache=True`: the first call compiles for ~50 s of CPU, later processes load
-the cache. numba's cache of this module's functions does not notice an edit of fast.py,
-whose `_step` and `_forces` they compile in: after editing fast.py, touch this file (or
-delete its __pycache__) so that both are compiled afresh.
+the cache. numba's cache of this module's functions does not notice an edit of fast.py
+or results.py, whose `_step`, `_forces` and `_hermite_max1` they compile in: after
+editing those, touch this file (or delete its __pycache__) so that all are compiled
+afresh.
 """
 
 import math
@@ -51,6 +52,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import fast as _fast
+from . import results as _results
 
 SAFE, LO, HI = 0.9, 0.2, 2.0                 # integrate.StepControl
 
@@ -287,36 +289,8 @@ def _energy(out, kt, q, v, taut, fd, M):
     return 0.5 * T + kt[9], -Vg, U
 
 
-@_jit
-def _hermite_max1(S0, S1, m0, m1):
-    """results._hermite_max1 (its docstring derives it)."""
-    if S1 >= S0:
-        best, where = S1, 1.0
-    else:
-        best, where = S0, 0.0
-    if m0 > 0 and m1 < 0:
-        A = 6 * (S0 - S1) + 3 * (m0 + m1)
-        B = -6 * (S0 - S1) - 4 * m0 - 2 * m1
-        C = m0
-        cands = np.empty(2)
-        nc = 1
-        if A != 0:
-            disc = max(B * B - 4 * A * C, 0.0)
-            qq = -0.5 * (B + math.copysign(math.sqrt(disc), B))
-            cands[0] = qq / A
-            cands[1] = C / qq if qq != 0 else -1.0
-            nc = 2
-        else:
-            cands[0] = -C / B
-        for i in range(nc):
-            s = cands[i]
-            if 0 < s < 1:
-                s2, s3 = math.pow(s, 2.0), math.pow(s, 3.0)
-                val = (2 * s3 - 3 * s2 + 1) * S0 + (s3 - 2 * s2 + s) * m0 \
-                    + (-2 * s3 + 3 * s2) * S1 + (s3 - s2) * m1
-                if val > best:
-                    best, where = val, s
-    return best, where
+# the Hermite peak of one rope (results._hermite_max1 derives it), compiled
+_hermite_max1 = _jit(_results._hermite_max1)
 
 
 @_jit

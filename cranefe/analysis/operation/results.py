@@ -156,8 +156,8 @@ def _hermite_max1(S0, S1, m0, m1):
             qq = -0.5 * (B + math.copysign(math.sqrt(disc), B))
             cands = (qq / A, C / qq if qq != 0 else -1.0)
         else:
-            cands = (-C / B,)
-        for s in cands:
+            cands = (-C / B, -1.0)          # (one root; -1 is outside (0, 1))
+        for s in cands:                     # (a plain tuple: loop.py compiles this)
             if 0 < s < 1:
                 val = (2 * s**3 - 3 * s**2 + 1) * S0 + (s**3 - 2 * s**2 + s) * m0 \
                     + (-2 * s**3 + 3 * s**2) * S1 + (s**3 - s**2) * m1
