@@ -9,7 +9,7 @@ from importlib import import_module
 
 DESCRIPTION = "every accuracy study (errors vs exact answers and their cost), one run"
 ACCURACY = ("ropes", "drive", "eigensolvers", "damping", "transient", "luffing",
-            "operations")
+            "operations", "operation_effects", "operation_flexible")
 
 
 def run(outdir, quick=False):

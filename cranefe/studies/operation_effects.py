@@ -176,6 +176,9 @@ def formulation_rows(outdir, quick=False):
 
 def measure(quick=False):
     rows, hist = [], {}
+    # warm-up: the compiled loop's import and cache load (numba, if installed) is not
+    # part of the first scene's reference time
+    run_one(scene_model(next(iter(SCENES)), VARIANTS[0][1], 0.1))
     for name in SCENES:
         dur = QUICK[name] if quick else None
         runs = []
