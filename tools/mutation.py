@@ -104,6 +104,28 @@ PRESETS = {
                             "tests/test_mutation_kills_luffing.py"]),
     "motion": ("cranefe/elements/motion.py",
                ["tests/test_mutation_kills_motion.py"]),
+    # loads/standard.py: the EN 13001-2 factors, pure functions
+    "standard": ("cranefe/analysis/loads/standard.py",
+                 ["tests/test_loads_standard.py", "tests/test_mutation_kills_loads.py",
+                  "tests/test_mutation_kills_standard.py"]),
+    # shaping: the impulse trains (pure) and the varying-frequency shaper; the engine's
+    # tests (tests/test_shaping_engine.py, 30 s) are left out
+    "shapers": ("cranefe/analysis/shaping/shapers.py",
+                ["tests/test_shaping.py", "tests/test_mutation_kills_shapers.py"]),
+    "varying": ("cranefe/analysis/shaping/varying.py",
+                ["tests/test_shaping_varying.py", "tests/test_mutation_kills_varying.py"]),
+    # operation engine: the drive profiles and the joint inertia, by value (the engine's
+    # own tests, tests/test_operation.py, take about 70 s)
+    "profiles": ("cranefe/analysis/operation/profiles.py",
+                 ["tests/test_mutation_kills_profiles.py"]),
+    "joints": ("cranefe/analysis/operation/joints.py",
+               ["tests/test_mutation_kills_joints.py"]),
+    # assembly/: every file of the package (a glob), with the fast model-building tests
+    "assembly": ("cranefe/assembly/*",
+                 ["tests/test_closed_forms.py", "tests/test_kernels.py",
+                  "tests/test_members.py", "tests/test_mutation_kills_system.py",
+                  "tests/test_mutation_kills_statics.py",
+                  "tests/test_mutation_kills_assembly.py"]),
 }
 
 
