@@ -49,7 +49,8 @@ PRESETS = {
                  ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
                   "tests/test_mutation_kills_condense.py",
                   "tests/test_mutation_kills_condense_weak.py",
-                  "tests/test_mutation_kills_condense_massless_map.py"]),
+                  "tests/test_mutation_kills_condense_massless_map.py",
+                  "tests/test_mutation_kills_condense_free.py"]),
     "sdof": ("cranefe/analysis/loads/sdof.py",
              ["tests/test_loads_standard.py", "tests/test_mutation_kills_loads.py"]),
     # beams: the three slowest structure tests (8-15 s each) are left out; every kernel
