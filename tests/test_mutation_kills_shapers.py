@@ -23,7 +23,7 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from cranefe.analysis.shaping import shapers as sh
-from cranefe.errors import ModelError
+from cranefe.errors import AnalysisError, ModelError
 
 
 def v_ref(times, amps, w, zeta):
@@ -90,6 +90,7 @@ def test_names_and_design_values_are_kept():
             s = f(2.0, z)
             assert s.name == name and s.omega == 2.0 and s.zeta == z
             assert sh.make(name, 2.0, z).name == name
+    assert sh.make("ZVD", 2.0).zeta == 0.0                 # undamped by default
     u = sh.make("unshaped", 3.0)
     assert u.name == "unshaped" and u.times.tolist() == [0.0]
     assert u.amplitudes.tolist() == [1.0] and u.duration == 0.0
@@ -146,3 +147,12 @@ def test_convolution_of_two_modes_multiplies_their_residuals():
     assert sh.convolve(sh.zv(1.0, 0.0), sh.zv(2.0, 0.1)).zeta == 0.0
     e = sh.convolve()
     assert e.times.tolist() == [0.0] and e.amplitudes.tolist() == [1.0] and e.zeta == 0.0
+
+
+def test_heavily_damped_ei_that_newton_cannot_find_is_an_error():
+    """At zeta = 0.9 the continuation's fsolve stalls (no EI train with V = 0.05 found):
+    an AnalysisError, not a train that misses its conditions."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        with pytest.raises(AnalysisError, match=r"^no EI shaper found for zeta = 0.9, "
+                                                r"V = 0.05: "):
+            sh.ei(1.0, 0.9, 0.05)
