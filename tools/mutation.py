@@ -73,12 +73,18 @@ PRESETS = {
                 "tests/test_structures.py::test_modes_see_the_self_weight_buckling_load",
                 "tests/test_mutation_kills_damping.py",
                 "tests/test_mutation_kills_system.py"]),
+    # statics: every model test solves a static state, so the module tests (the earlier
+    # preset, statics_broad) run per mutant for about 1.5 h; the two kill-test files
+    # reach every function on small models solved by hand, in seconds
     "statics": ("cranefe/statics.py",
-                ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
-                 "tests/test_members.py",
-                 "tests/test_validation_study.py::test_spatial_spreader_with_sway_against_exudyn",
-                 "tests/test_structures.py::test_member_end_forces_under_self_weight_are_exact",
-                 "tests/test_mutation_kills_statics.py"]),
+                ["tests/test_mutation_kills_statics.py",
+                 "tests/test_mutation_kills_statics_solve.py"]),
+    "statics_broad": ("cranefe/statics.py",
+                      ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
+                       "tests/test_members.py",
+                       "tests/test_validation_study.py::test_spatial_spreader_with_sway_against_exudyn",
+                       "tests/test_structures.py::test_member_end_forces_under_self_weight_are_exact",
+                       "tests/test_mutation_kills_statics.py"]),
     "damping_exact": ("cranefe/analysis/damping/exact.py",
                       ["tests/test_values.py", "tests/test_damping.py",
                        "tests/test_mutation_kills_exact.py"]),
