@@ -212,7 +212,8 @@ def test_combined_moves_add_their_positions():
 
 
 def test_moves_with_a_speed_before_their_first_time_cannot_be_combined():
-    with pytest.raises(ValueError, match="cannot be combined"):
+    with pytest.raises(ValueError, match=r"^moves with a speed before their first time "
+                                         r"cannot be combined$"):
         combine([speed_table([1.0, 2.0], [0.5, 0.0]), trapezoid(1.0, 1.0, 1.0, start=3.0)])
     # a table starting at t = 0 has no time before it: it combines
     m = combine([speed_table([0.0, 2.0], [0.5, 0.0]), trapezoid(1.0, 1.0, 1.0, start=3.0)])
@@ -238,6 +239,13 @@ def test_s_curve_with_a_short_cruise_and_its_moves():
     # a jerk below the speed scale still counts as moving (first segment: v = a = 0)
     m = s_curve(3.0, 1.0, 0.3, 0.5, start=0.25)
     assert m.moves() == [(0.25, pytest.approx(m.end, rel=1e-15))]
+    # the distance 3 is short of v (v/a + a/j) = 3.93 for v = 1: the peak speed is the
+    # root of v^2/a + v a/j = 3, above a^2/j = 0.18, so the acceleration still reaches
+    # a_max = 0.3 (t_j = a/j = 0.6, t_a = v/a - t_j), never more
+    vp = 0.15 * (-0.6 + np.sqrt(0.36 + 4 * 3.0 / 0.3))
+    assert np.abs(m.a).max() == pytest.approx(0.3, rel=1e-15)
+    assert np.allclose(np.diff(m.breakpoints)[:2], [0.6, vp / 0.3 - 0.6], rtol=1e-11)
+    assert m(50.0)[0] == pytest.approx(3.0, rel=1e-12)
     assert m.moves()[0][1] > 0.25
 
 
@@ -267,9 +275,16 @@ def test_extremes_at_breakpoints_and_roots_of_ramps():
 
 def test_later_moves_combine():
     """Both moves start after t = 0 from rest: nothing moves before the first time."""
-    up, down = trapezoid(1.0, 0.5, 0.5, start=2.0), trapezoid(-1.0, 0.5, 0.5, start=6.0)
+    up, down = trapezoid(1.0, 0.5, 0.5, start=2.0), trapezoid(-1.0, 0.3, 0.5, start=6.0)
     m = combine([up, down])
     assert m.breakpoints[0] == 2.0
     assert np.allclose(_state(m, 1.0), [0.0, 0.0, 0.0], atol=0)
     for t in (2.5, 4.4, 6.6, 9.5):
         assert np.allclose(_state(m, t), _state(up, t) + _state(down, t), atol=TOL)
+    # a table moving before its first time combines with a move from t = 0 (the sum then
+    # starts at 0, where each part's state is defined)
+    early = speed_table([0.0, 2.0], [0.0, 1.0])
+    late = speed_table([1.0, 2.0], [0.5, 0.0])
+    m = combine([early, late])
+    for t in (0.5, 1.5, 3.0):
+        assert np.allclose(_state(m, t), _state(early, t) + _state(late, t), atol=TOL)
