@@ -201,3 +201,96 @@ def test_a_toggle_stops_the_continuation():
         lk.state(np.radians(120.0))
     assert lk.limits[1] is not None and 60 < np.degrees(lk.limits[1]) < 120
     assert lk.limits[0] is None
+
+
+CYLINDER = """cranefe: 1
+plane: xz
+nodes: {O: [0, 0, 0], A: [-1, 0, -2], C: [3, 0, 1], T: [6, 0, 0], M: [1, 0, -0.5],
+        E: [7, 0, 1]}
+ground: [O, A]
+bodies:
+  boom: {mass: 1000, com: [3, 0, 0], inertia: 3000, nodes: [C, T]}
+  barrel: {mass: 100, com: [0, 0, -1.25], inertia: 20, nodes: [M]}
+  rod: {mass: 50, com: [2, 0, 0.25], inertia: 10, nodes: [M]}
+  head: {mass: 200, com: [7, 0, 0.5], inertia: 30, nodes: [E]}
+joints:
+  - {type: hinge, bodies: [ground, boom], at: O}
+  - {type: hinge, bodies: [ground, barrel], at: A}
+  - {type: slider, bodies: [barrel, rod], at: M, axis: [0.8, 0, 0.6]}
+  - {type: hinge, bodies: [boom, rod], at: C}
+  - {type: fixed, bodies: [boom, head], at: T}
+"""
+CYL_DEGS = (-5.0, 10.0, 25.0)
+
+
+@functools.lru_cache(maxsize=None)
+def _cylinder_by_hand():
+    """A boom luffed by a cylinder (barrel hinged to the ground at A, rod hinged to the
+    boom at C, a slider between them along A-C) with a head fixed to the boom at T.
+    With d = alpha (alpha_ref = 0: O -> T horizontal): C = Rot(d) C0; the barrel and the
+    rod turn by theta = angle(C - A) - angle(C0 - A) (the slider keeps their angles
+    equal); the barrel about A, the rod about C (hinged there, it follows C); the head
+    turns with the boom. Poses (x, z, theta) per body and their alpha derivatives by
+    mpmath at 30 digits."""
+    mp.mp.dps = 30
+
+    def v(x, z):
+        return mp.matrix([mp.mpf(x), mp.mpf(z)])
+
+    def rot(t, p):
+        return mp.matrix([mp.cos(t) * p[0] - mp.sin(t) * p[1],
+                          mp.sin(t) * p[0] + mp.cos(t) * p[1]])
+
+    def ang(p):
+        return mp.atan2(p[1], p[0])
+
+    O, A, C0 = v(0, 0), v(-1, -2), v(3, 1)
+    com = {"boom": v(3, 0), "barrel": v(0, "-1.25"), "rod": v(2, "0.25"),
+           "head": v(7, "0.5")}
+
+    def pose(a):
+        C = rot(a, C0)
+        th = ang(C - A) - ang(C0 - A)
+        out = {"boom": (rot(a, com["boom"]), a),
+               "barrel": (A + rot(th, com["barrel"] - A), th),
+               "rod": (C + rot(th, com["rod"] - C0), th),
+               "head": (rot(a, com["head"]), a)}
+        return {k: [p[0], p[1], t] for k, (p, t) in out.items()}
+
+    res = {}
+    for deg in CYL_DEGS:
+        a = mp.radians(deg)
+        res[deg] = {}
+        for name in com:
+            f = [lambda t, name=name, i=i: pose(t)[name][i] for i in range(3)]
+            res[deg][name] = [np.array([float(g(a)) for g in f]),
+                              np.array([float(mp.diff(g, a)) for g in f]),
+                              np.array([float(mp.diff(g, a, 2)) for g in f])]
+    return res
+
+
+def test_a_cylinder_with_a_slider_and_a_fixed_head_against_the_hand_linkage():
+    hand = _cylinder_by_hand()
+    m = load("cyl.yaml", CYLINDER)
+    lk = Linkage(m, "boom", "O", "T")
+    assert lk.square and lk.n == 12 and lk.alpha_ref == 0.0
+    names = [b.name for b in m.bodies]
+    st = lk.state(np.radians(CYL_DEGS))
+    tol = (1e-11, 1e-10, 1e-9)
+    for n, deg in enumerate(CYL_DEGS):
+        for b in lk.bodies:
+            i = lk.local[b]
+            for d, arr in enumerate((st.q, st.dq, st.ddq)):
+                assert np.allclose(arr[n, 3 * i:3 * i + 3], hand[deg][names[b]][d], rtol=0,
+                                   atol=tol[d] * 10), (deg, names[b], d)
+    # the constraint equations vanish at the solution, and their Jacobian is the
+    # derivative of Phi (central differences, h = 1e-6: truncation ~1e-12 m)
+    F, J = lk.equations(st.q, st.alpha)
+    assert np.abs(F).max() < 1e-12
+    h = 1e-6
+    for k in range(lk.n):
+        dq = np.zeros(lk.n)
+        dq[k] = h
+        Fp, _ = lk.equations(st.q + dq, st.alpha)
+        Fm, _ = lk.equations(st.q - dq, st.alpha)
+        assert np.allclose((Fp - Fm) / (2 * h), J[:, :, k], rtol=0, atol=1e-8), k
