@@ -130,3 +130,27 @@ def test_point_mass_on_a_free_node_and_a_linear_drive_rotor_in_the_mass_matrix()
     assert len(points) == 1
     b, p, F = points[0]
     assert b == 0 and np.allclose(p, [2, 0, 2]) and np.allclose(F, [0, 0, -100 * G])
+
+
+CANTILEVER = """cranefe: 1
+plane: xz
+gravity: [0, 0, 0]
+nodes: {O: [0, 0, 0], T: [2, 0, 0]}
+ground: [O]
+masses: {T: 500}
+members:
+  arm: {type: beam, nodes: [O, T], E: 2.0e11, G: 8.0e10, A: 1.0e-2, Iy: 1.0e-5,
+        Asz: 1.0e-4, rho: 0}
+effects: {structure: flexible}
+"""
+
+
+def test_timoshenko_cantilever_with_a_tip_mass():
+    """A massless Timoshenko cantilever (shear area 1e-4 m^2, small on purpose: the
+    shear compliance L/(G As) = 2.5e-7 m/N against L^3/(3 EI) = 1.33e-6 m/N) under a tip
+    mass M, gravity off: w^2 = 1 / (M (L^3/(3 EI) + L/(G As))) across, EA/(L M) along
+    (one element holds the static Timoshenko solution exactly: 1e-12)."""
+    L, E, G_, A, I, As, M = 2.0, 2.0e11, 8.0e10, 1.0e-2, 1.0e-5, 1.0e-4, 500.0
+    r = modes(load("c.yaml", CANTILEVER))
+    flex = L**3 / (3 * E * I) + L / (G_ * As)
+    assert np.allclose(np.sort(r.omega**2), [1 / (M * flex), E * A / (L * M)], rtol=1e-12)
