@@ -205,7 +205,7 @@ def test_a_toggle_stops_the_continuation():
 
 CYLINDER = """cranefe: 1
 plane: xz
-nodes: {O: [0, 0, 0], A: [-1, 0, -2], C: [3, 0, 1], T: [6, 0, 0], M: [1, 0, -0.5],
+nodes: {O: [0, 0, 0], A: [-1, 0, -1.5], C: [3, 0, 1], T: [6, 0, 0], M: [1, 0, -0.5],
         E: [7, 0, 1]}
 ground: [O, A]
 bodies:
@@ -226,12 +226,15 @@ CYL_DEGS = (-5.0, 10.0, 25.0)
 @functools.lru_cache(maxsize=None)
 def _cylinder_by_hand():
     """A boom luffed by a cylinder (barrel hinged to the ground at A, rod hinged to the
-    boom at C, a slider between them along A-C) with a head fixed to the boom at T.
-    With d = alpha (alpha_ref = 0: O -> T horizontal): C = Rot(d) C0; the barrel and the
-    rod turn by theta = angle(C - A) - angle(C0 - A) (the slider keeps their angles
-    equal); the barrel about A, the rod about C (hinged there, it follows C); the head
-    turns with the boom. Poses (x, z, theta) per body and their alpha derivatives by
-    mpmath at 30 digits."""
+    boom at C, a slider between them along the line M-C, u0 = (0.8, 0, 0.6), which does
+    not pass through A: the barrel's point M then moves along the line too, and the
+    slider's Coriolis term 2 w u.(v_b - v_a) does not vanish) with a head fixed to the
+    boom at T. With d = alpha (alpha_ref = 0: O -> T horizontal): C = Rot(d) C0; the
+    barrel and the rod turn by theta, the root of cross(Rot(theta) u0, C - P(theta)) = 0
+    with P = A + Rot(theta)(M0 - A) (C on the barrel's line; mpmath's findroot from 0);
+    the barrel about A, the rod about C (hinged there, it follows C); the head turns
+    with the boom. Poses (x, z, theta) per body and their alpha derivatives by mpmath at
+    30 digits."""
     mp.mp.dps = 30
 
     def v(x, z):
@@ -244,13 +247,18 @@ def _cylinder_by_hand():
     def ang(p):
         return mp.atan2(p[1], p[0])
 
-    O, A, C0 = v(0, 0), v(-1, -2), v(3, 1)
+    O, A, C0, M0 = v(0, 0), v(-1, "-1.5"), v(3, 1), v(1, "-0.5")
+    u0 = v("0.8", "0.6")
     com = {"boom": v(3, 0), "barrel": v(0, "-1.25"), "rod": v(2, "0.25"),
            "head": v(7, "0.5")}
 
     def pose(a):
         C = rot(a, C0)
-        th = ang(C - A) - ang(C0 - A)
+
+        def off(t):
+            P, u = A + rot(t, M0 - A), rot(t, u0)
+            return u[0] * (C - P)[1] - u[1] * (C - P)[0]
+        th = mp.findroot(off, mp.mpf(0) if abs(a) < 0.3 else a / 2)
         out = {"boom": (rot(a, com["boom"]), a),
                "barrel": (A + rot(th, com["barrel"] - A), th),
                "rod": (C + rot(th, com["rod"] - C0), th),
