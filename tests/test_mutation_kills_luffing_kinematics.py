@@ -18,6 +18,7 @@ Jacobian, condition ~1e3 over the range).
 """
 
 import functools
+import os
 
 import mpmath as mp
 import numpy as np
@@ -28,8 +29,6 @@ from cranefe.errors import AnalysisError, ModelError
 from cranefe.model import load
 
 from test_values import ROOT, _portal_linkage
-
-import os
 
 MODEL = os.path.join(ROOT, "models", "portal_crane_luffing.yaml")
 DEGS = (52.0, 63.0, 77.0)
