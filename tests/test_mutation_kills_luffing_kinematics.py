@@ -210,7 +210,7 @@ ground: [O, A]
 bodies:
   boom: {mass: 1000, com: [3, 0, 0], inertia: 3000, nodes: [C, T]}
   barrel: {mass: 100, com: [0, 0, -1.25], inertia: 20, nodes: [M]}
-  rod: {mass: 50, com: [2, 0, 0.25], inertia: 10, nodes: [M]}
+  rod: {mass: 50, com: [2, 0, 0.5], inertia: 10, nodes: [M]}
   head: {mass: 200, com: [7, 0, 0.5], inertia: 30, nodes: [E]}
 joints:
   - {type: hinge, bodies: [ground, boom], at: O}
@@ -227,7 +227,9 @@ def _cylinder_by_hand():
     """A boom luffed by a cylinder (barrel hinged to the ground at A, rod hinged to the
     boom at C, a slider between them along the line M-C, u0 = (0.8, 0, 0.6), which does
     not pass through A: the barrel's point M then moves along the line too, and the
-    slider's Coriolis term 2 w u.(v_b - v_a) does not vanish) with a head fixed to the
+    slider's Coriolis term 2 w u.(v_b - v_a) does not vanish; the rod's centre is off the
+    line too, else the two centres' offsets to M would differ along the line only) with a
+    head fixed to the
     boom at T. With d = alpha (alpha_ref = 0: O -> T horizontal): C = Rot(d) C0; the
     barrel and the rod turn by theta, the root of cross(Rot(theta) u0, C - P(theta)) = 0
     with P = A + Rot(theta)(M0 - A) (C on the barrel's line; mpmath's findroot from 0);
@@ -248,7 +250,7 @@ def _cylinder_by_hand():
 
     O, A, C0, M0 = v(0, 0), v(-1, "-1.5"), v(3, 1), v(1, "-0.5")
     u0 = v("0.8", "0.6")
-    com = {"boom": v(3, 0), "barrel": v(0, "-1.25"), "rod": v(2, "0.25"),
+    com = {"boom": v(3, 0), "barrel": v(0, "-1.25"), "rod": v(2, "0.5"),
            "head": v(7, "0.5")}
 
     def pose(a):
@@ -301,3 +303,20 @@ def test_a_cylinder_with_a_slider_and_a_fixed_head_against_the_hand_linkage():
         Fp, _ = lk.equations(st.q + dq, st.alpha)
         Fm, _ = lk.equations(st.q - dq, st.alpha)
         assert np.allclose((Fp - Fm) / (2 * h), J[:, :, k], rtol=0, atol=1e-8), k
+
+
+def test_a_planar_ball_joint_is_a_hinge():
+    """The rocker's ground hinge at G given as a ball joint (planar: the same two
+    equations): the same poses and transfer functions as the hand linkage at 63 deg."""
+    hand = _hand()
+    text = open(MODEL).read()
+    a = "  - {type: hinge, bodies: [ground, rocker], at: G}"
+    assert a in text
+    m = load("ball.yaml", text.replace(a, "  - {type: ball, bodies: [ground, rocker], at: G}"))
+    lk = _linkage(m)
+    st = lk.state(np.radians([63.0]))
+    names = [b.name for b in m.bodies]
+    i = lk.local[names.index("rocker")]
+    for d, arr in enumerate((st.q, st.dq, st.ddq)):
+        assert np.allclose(arr[0, 3 * i:3 * i + 3], hand[63.0]["rocker"][d], rtol=0,
+                           atol=(1e-9, 1e-8, 1e-7)[d])
