@@ -209,7 +209,7 @@ nodes: {O: [0, 0, 0], A: [-1, 0, -1.5], C: [3, 0, 1], T: [6, 0, 0], M: [1, 0, -0
 ground: [O, A]
 bodies:
   boom: {mass: 1000, com: [3, 0, 0], inertia: 3000, nodes: [C, T]}
-  barrel: {mass: 100, com: [0, 0, -1.25], inertia: 20, nodes: [M]}
+  barrel: {mass: 100, com: [0, 0, -1.0], inertia: 20, nodes: [M]}
   rod: {mass: 50, com: [2, 0, 0.5], inertia: 10, nodes: [M]}
   head: {mass: 200, com: [7, 0, 0.5], inertia: 30, nodes: [E]}
 joints:
@@ -228,7 +228,8 @@ def _cylinder_by_hand():
     boom at C, a slider between them along the line M-C, u0 = (0.8, 0, 0.6), which does
     not pass through A: the barrel's point M then moves along the line too, and the
     slider's Coriolis term 2 w u.(v_b - v_a) does not vanish; the rod's centre is off the
-    line too, else the two centres' offsets to M would differ along the line only) with a
+    line too, and so is the barrel's, else the curvature terms of the slider equation
+would vanish along the normal) with a
     head fixed to the
     boom at T. With d = alpha (alpha_ref = 0: O -> T horizontal): C = Rot(d) C0; the
     barrel and the rod turn by theta, the root of cross(Rot(theta) u0, C - P(theta)) = 0
@@ -250,7 +251,7 @@ def _cylinder_by_hand():
 
     O, A, C0, M0 = v(0, 0), v(-1, "-1.5"), v(3, 1), v(1, "-0.5")
     u0 = v("0.8", "0.6")
-    com = {"boom": v(3, 0), "barrel": v(0, "-1.25"), "rod": v(2, "0.5"),
+    com = {"boom": v(3, 0), "barrel": v(0, -1), "rod": v(2, "0.5"),
            "head": v(7, "0.5")}
 
     def pose(a):
