@@ -209,7 +209,7 @@ nodes: {O: [0, 0, 0], A: [-1, 0, -1.5], C: [3, 0, 1], T: [6, 0, 0], M: [1, 0, -0
 ground: [O, A]
 bodies:
   boom: {mass: 1000, com: [3, 0, 0], inertia: 3000, nodes: [C, T]}
-  barrel: {mass: 100, com: [0, 0, -1.0], inertia: 20, nodes: [M]}
+  barrel: {mass: 100, com: [0, 0, -0.9], inertia: 20, nodes: [M]}
   rod: {mass: 50, com: [2, 0, 0.5], inertia: 10, nodes: [M]}
   head: {mass: 200, com: [7, 0, 0.5], inertia: 30, nodes: [E]}
 joints:
@@ -251,7 +251,7 @@ would vanish along the normal) with a
 
     O, A, C0, M0 = v(0, 0), v(-1, "-1.5"), v(3, 1), v(1, "-0.5")
     u0 = v("0.8", "0.6")
-    com = {"boom": v(3, 0), "barrel": v(0, -1), "rod": v(2, "0.5"),
+    com = {"boom": v(3, 0), "barrel": v(0, "-0.9"), "rod": v(2, "0.5"),
            "head": v(7, "0.5")}
 
     def pose(a):
