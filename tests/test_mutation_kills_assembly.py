@@ -15,6 +15,10 @@
   from `mass_and_gravity` directly (a modal analysis holds the drive: the rotor does not
   turn there).
 
+- A vertical bar with mass (a truss member with consistent or lumped mass, a rope with
+  mass in one element, consistent or lumped) holding a load (`_trusses`,
+  `_rope_elements`, `element_materials`): its frequency and static force by hand.
+
 Tolerance 1e-12 relative: a one-coordinate eigenvalue and matrix entries of a few terms.
 """
 
@@ -26,6 +30,7 @@ from cranefe.assembly import mass_and_gravity
 from cranefe.coordinates import build_dofs
 from cranefe.errors import ModelError
 from cranefe.model import load
+from cranefe.statics import solve_static
 
 G = 9.81
 
@@ -154,3 +159,38 @@ def test_timoshenko_cantilever_with_a_tip_mass():
     r = modes(load("c.yaml", CANTILEVER))
     flex = L**3 / (3 * E * I) + L / (G_ * As)
     assert np.allclose(np.sort(r.omega**2), [1 / (M * flex), E * A / (L * M)], rtol=1e-12)
+
+
+BAR = """cranefe: 1
+plane: xz
+nodes: {{O: [0, 0, 10], L: [0, 0, 0]}}
+ground: [O]
+masses: {{L: 500}}
+{element}
+effects: {{sway: false{extra}}}
+"""
+
+
+@pytest.mark.parametrize("element, extra, share", [
+    ("members:\n  bar: {type: truss, nodes: [O, L], E: 2.0e11, A: 1.0e-3, rho: 7850}",
+     ", structure: flexible", 1 / 3),
+    ("members:\n  bar: {type: truss, nodes: [O, L], E: 2.0e11, A: 1.0e-3, rho: 7850, "
+     "mass: lumped}", ", structure: flexible", 1 / 2),
+    ("ropes:\n  r: {EA: 2.0e8, path: [O, L], mass_per_length: 7.85}", "", 1 / 3),
+    ("ropes:\n  r: {EA: 2.0e8, path: [O, L], mass_per_length: 7.85}",
+     ", rope_mass: 1, rope_mass_matrix: lumped", 1 / 2)])
+def test_a_bar_with_mass_under_a_load_one_element(element, extra, share):
+    """A vertical bar (truss member or rope with mass, one element, EA = 2e8 N, 78.5 kg)
+    holding 500 kg: with the top fixed the element's consistent mass puts mu L / 3 on the
+    free end (lumped: mu L / 2), so w^2 = (EA / L) / (M + share mu L) exactly; its
+    gravity load mu L g / 2 per node (both forms), so the static force in the element is
+    (M + mu L / 2) g."""
+    text = BAR.format(element=element, extra=extra)
+    if "rope_mass: 1" not in extra and "ropes" in element:
+        text = text.replace("sway: false", "sway: false, rope_mass: 1")
+    model = load("bar.yaml", text)
+    mL = 7850 * 1.0e-3 * 10
+    r = modes(model)
+    assert r.omega[0] ** 2 == pytest.approx(2.0e8 / 10 / (500 + share * mL), rel=1e-12)
+    st = solve_static(model)
+    assert st.element_force == pytest.approx([(500 + mL / 2) * G], rel=1e-12)
