@@ -49,7 +49,8 @@ PRESETS = {
                  ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
                   "tests/test_mutation_kills_condense.py",
                   "tests/test_mutation_kills_condense_weak.py",
-                  "tests/test_mutation_kills_condense_massless_map.py"]),
+                  "tests/test_mutation_kills_condense_massless_map.py",
+                  "tests/test_mutation_kills_condense_free.py"]),
     "sdof": ("cranefe/analysis/loads/sdof.py",
              ["tests/test_loads_standard.py", "tests/test_mutation_kills_loads.py"]),
     # beams: the three slowest structure tests (8-15 s each) are left out; every kernel
@@ -72,12 +73,18 @@ PRESETS = {
                 "tests/test_structures.py::test_modes_see_the_self_weight_buckling_load",
                 "tests/test_mutation_kills_damping.py",
                 "tests/test_mutation_kills_system.py"]),
+    # statics: every model test solves a static state, so the module tests (the earlier
+    # preset, statics_broad) run per mutant for about 1.5 h; the two kill-test files
+    # reach every function on small models solved by hand, in seconds
     "statics": ("cranefe/statics.py",
-                ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
-                 "tests/test_members.py",
-                 "tests/test_validation_study.py::test_spatial_spreader_with_sway_against_exudyn",
-                 "tests/test_structures.py::test_member_end_forces_under_self_weight_are_exact",
-                 "tests/test_mutation_kills_statics.py"]),
+                ["tests/test_mutation_kills_statics.py",
+                 "tests/test_mutation_kills_statics_solve.py"]),
+    "statics_broad": ("cranefe/statics.py",
+                      ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
+                       "tests/test_members.py",
+                       "tests/test_validation_study.py::test_spatial_spreader_with_sway_against_exudyn",
+                       "tests/test_structures.py::test_member_end_forces_under_self_weight_are_exact",
+                       "tests/test_mutation_kills_statics.py"]),
     "damping_exact": ("cranefe/analysis/damping/exact.py",
                       ["tests/test_values.py", "tests/test_damping.py",
                        "tests/test_mutation_kills_exact.py"]),
@@ -99,11 +106,34 @@ PRESETS = {
                         "tests/test_mutation_kills_luffing_own_axis.py",
                         "tests/test_mutation_kills_luffing_drive.py",
                         "tests/test_mutation_kills_luffing_proxy.py"]),
+    # kinematics: the Linkage alone against the hand linkage (hand values computed once
+    # per session); the J(alpha) tests recompute their 30-digit references per mutant
     "luffing_kinematics": ("cranefe/analysis/luffing/kinematics.py",
-                           ["tests/test_values.py::test_portal_crane_reduced_inertia_from_an_independent_linkage",
-                            "tests/test_mutation_kills_luffing.py"]),
+                           ["tests/test_mutation_kills_luffing_kinematics.py"]),
     "motion": ("cranefe/elements/motion.py",
                ["tests/test_mutation_kills_motion.py"]),
+    # loads/standard.py: the EN 13001-2 factors, pure functions
+    "standard": ("cranefe/analysis/loads/standard.py",
+                 ["tests/test_loads_standard.py", "tests/test_mutation_kills_loads.py",
+                  "tests/test_mutation_kills_standard.py"]),
+    # shaping: the impulse trains (pure) and the varying-frequency shaper; the engine's
+    # tests (tests/test_shaping_engine.py, 30 s) are left out
+    "shapers": ("cranefe/analysis/shaping/shapers.py",
+                ["tests/test_shaping.py", "tests/test_mutation_kills_shapers.py"]),
+    "varying": ("cranefe/analysis/shaping/varying.py",
+                ["tests/test_shaping_varying.py", "tests/test_mutation_kills_varying.py"]),
+    # operation engine: the drive profiles and the joint inertia, by value (the engine's
+    # own tests, tests/test_operation.py, take about 70 s)
+    "profiles": ("cranefe/analysis/operation/profiles.py",
+                 ["tests/test_mutation_kills_profiles.py"]),
+    "joints": ("cranefe/analysis/operation/joints.py",
+               ["tests/test_mutation_kills_joints.py"]),
+    # assembly/: every file of the package (a glob), with the fast model-building tests
+    "assembly": ("cranefe/assembly/*",
+                 ["tests/test_closed_forms.py", "tests/test_kernels.py",
+                  "tests/test_members.py", "tests/test_mutation_kills_system.py",
+                  "tests/test_mutation_kills_statics.py",
+                  "tests/test_mutation_kills_assembly.py"]),
 }
 
 
@@ -114,6 +144,9 @@ def main(argv=None) -> int:
     ap.add_argument("tests", nargs="*", help="test files (default: the preset's)")
     ap.add_argument("--timeout", type=float, default=20.0,
                     help="seconds added to 15 x the clean run time per mutant")
+    ap.add_argument("--multiplier", type=float, default=15.0,
+                    help="x the clean run time in the per-mutant limit (mutmut: CPU seconds "
+                         "2 x multiplier x (clean time + --timeout))")
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--minutes", type=float,
                     help="stop the run after this long and report the mutants checked so far")
@@ -162,6 +195,7 @@ def main(argv=None) -> int:
         f"pytest_add_cli_args_test_selection =\n    " + "\n    ".join(tests) + "\n"
         f"also_copy =\n    {copies}\n"
         f"timeout_constant = {args.timeout}\n"
+        f"timeout_multiplier = {args.multiplier}\n"
         "use_git_change_detection = false\n")
 
     run = subprocess.Popen([sys.executable, "-m", "mutmut", "run",
