@@ -249,7 +249,7 @@ would vanish along the normal) with a
     def ang(p):
         return mp.atan2(p[1], p[0])
 
-    O, A, C0, M0 = v(0, 0), v(-1, "-1.5"), v(3, 1), v(1, "-0.5")
+    A, C0, M0 = v(-1, "-1.5"), v(3, 1), v(1, "-0.5")
     u0 = v("0.8", "0.6")
     com = {"boom": v(3, 0), "barrel": v(0, "-0.9"), "rod": v(2, "0.5"),
            "head": v(7, "0.5")}
