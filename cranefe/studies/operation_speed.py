@@ -276,4 +276,63 @@ def run(outdir, quick=False, repeat=None):
     ax[1].legend(fontsize=7)
     fig.suptitle(f"Tower-crane cycle ({duration:g} s)")
     paths.append(save(fig, outdir, "operation_speed.png"))
+    docs = os.path.join(os.path.dirname(os.path.abspath(outdir)), "docs", "operations.md")
+    if os.path.exists(docs) and not quick:
+        from .operations import replace_block
+        with open(docs) as fh:
+            text = fh.read()
+        with open(docs, "w") as fh:
+            fh.write(replace_block(text, "operation_speed", markdown(rows)))
+        paths.append(docs)
     return paths
+
+
+_NAMES = {"exudyn": None, "new": "compiled loop (numba)",
+          "step": "compiled step, Python loop", "numpy": "numpy step (reference path)",
+          "baseline": "baseline (CRANEFE_BASELINE)"}
+
+
+def markdown(rows):
+    """The measured table of docs/operations.md "Cost" (Exudyn's rows first, then the
+    engine's by tolerance), with the machine's load at the end of the run."""
+    def e(x):
+        return "-" if x == "" else f"{float(x):.1e}"
+
+    def g(x):
+        return f"{float(x):,.0f}".replace(",", " ")
+
+    lines = ["| program | tolerance / step | steps (rejected) | CPU [s] | real-time factor "
+             "CPU / wall | dynamic factor | peak force error | sway max error [deg] | "
+             "end position error [m] | CPU / engine default |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    from .operations import _version
+    exudyn = f"Exudyn {_version() or ''}".strip()
+    default = next((float(r["cpu_s"]) for r in rows if r["engine"] == "new" and
+                    float(r["tolerance"]) == 1e-7), None)     # the engine's default
+
+    def key(r):          # Exudyn by step then Newton tolerance; the engine by tolerance
+        if r["engine"] == "exudyn":
+            return (0, -float(r["tolerance"]), float(r["newton_rtol"]))
+        return (1, -float(r["tolerance"]), list(_NAMES).index(r["engine"]))
+
+    for r in sorted((r for r in rows if r["engine"] in _NAMES), key=key):
+        if r["engine"] == "exudyn":
+            name = exudyn
+            if float(r["newton_rtol"]) != 1e-8:
+                name += f", Newton rtol {float(r['newton_rtol']):g}"
+            tol, steps = f"{float(r['tolerance']):g} s", g(r["steps"])
+        else:
+            name, tol = _NAMES[r["engine"]], f"{float(r['tolerance']):g}"
+            steps = f"{g(r['steps'])} ({g(r['rejected'])})"
+        ratio = float(r["cpu_s"]) / default if default else float("nan")
+        lines.append(f"| {name} | {tol} | {steps} | {float(r['cpu_s']):.3g} | "
+                     f"{g(r['rtf_cpu'])} / {g(r['rtf_wall'])} | "
+                     f"{float(r['dynamic_factor']):.4f} | {e(r['err_peak_force'])} | "
+                     f"{e(r['err_sway_max_deg'])} | {e(r['err_end_position_m'])} | "
+                     f"{ratio:.3g} |")
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    compile_ = [float(r["cpu_s"]) for r in rows if r["engine"] == "compile"]
+    cold = (f" The compiled loop's first call without a cache (compiling it) took "
+            f"{compile_[0]:.0f} s of CPU, not in the table." if compile_ else "")
+    return "\n".join(lines) + f"\n\nLoad average of the machine at the end of the run: " \
+        f"{load:.1f} (2 cores).{cold}\n"
