@@ -34,6 +34,8 @@ DOFs, made at the current axial forces since U is quadratic in theta for fixed u
 `H_tt - H_tr H_rr^-1 H_rt`.
 """
 
+import math
+
 import numpy as np
 
 from ...assembly.beams import beam_blocks, beam_geometric_local
@@ -516,6 +518,10 @@ class ElasticStructure:
         and the elastic coordinates at t = 0 (the ropes' unstretched lengths fixed),
         then the ropes' static forces of that state (S0, taut, holding torques)."""
         n = mech.n
+        # at rest before the drives start: the prescribed motions' limits from the left
+        # of t = 0 (a profile starting at 0 with an acceleration must not bend the
+        # structure in its static state)
+        t0 = math.nextafter(0.0, -math.inf)
         q = mech.q0.copy()
         o = mech.nc + mech.nJ
         idx = np.r_[0:mech.nc, o:o + self.nu]
@@ -523,9 +529,9 @@ class ElasticStructure:
         scale = mech.model.length_scale
         taut = np.ones(len(mech.ropes), bool)
         for it in range(60):
-            ev = mech.evaluate(0.0, q, v, taut, damping=False, powers=False)
+            ev = mech.evaluate(t0, q, v, taut, damping=False, powers=False)
             taut = ev.L >= ev.L0 * (1 - 1e-15)
-            ev = mech.evaluate(0.0, q, v, taut, damping=False, powers=False)
+            ev = mech.evaluate(t0, q, v, taut, damping=False, powers=False)
             dq = np.linalg.solve(ev.K[np.ix_(idx, idx)], ev.F[idx])
             q[idx] += dq
             step = np.abs(dq).max()
@@ -536,7 +542,7 @@ class ElasticStructure:
                                 f"{self.file} was not found (60 Newton iterations, last "
                                 f"correction {step:.3g} m): a structure that gravity "
                                 "buckles, or members too soft for their loads")
-        ev = mech.evaluate(0.0, q, v, taut, damping=False, powers=False)
+        ev = mech.evaluate(t0, q, v, taut, damping=False, powers=False)
         mech.q0 = q
         mech.S0 = ev.S.copy()
         mech.taut0 = ev.S > 0
