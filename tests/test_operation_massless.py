@@ -132,3 +132,23 @@ def test_what_massless_blocks_do_not_cover_is_refused(tmp_path, capsys):
         assert main(["simulate", str(path)]) == 2
         err = capsys.readouterr().err
         assert entry in err and "massless" in err, err
+
+
+def test_a_block_whose_ropes_go_slack_stops_with_a_message(tmp_path, capsys):
+    """The drum hauls in at 4 m/s of rope and stops within 0.05 s: the load (2 m/s up)
+    decelerates slower than the stop and the block's ropes go slack. A massless block
+    held by nothing has no position: the run stops with exit 1 naming the block and
+    the time (audit: before, a LinAlgError traceback and no output), the CSV and JSON
+    of what was computed kept."""
+    import json
+    path = scene(tmp_path, BLOCK, "  duration: 4\n  drives:\n    hoist: {drum: hoist, "
+                 "profile: {type: table, speed: [[0, 0], [1.0, 4.0], [2.0, 4.0], "
+                 "[2.05, 0]]}}\n")
+    csv = tmp_path / "out.csv"
+    assert main(["simulate", str(path), "--json", "--csv", str(csv)]) == 1
+    cap = capsys.readouterr()
+    assert "massless block(s) B" in cap.err and "t = 2.0" in cap.err, cap.err
+    assert "Traceback" not in cap.err
+    doc = json.loads(cap.out)
+    assert doc["status"] == 1 and 2.0 < doc["duration_s"] < 2.2
+    assert csv.exists() and len(csv.read_text().splitlines()) > 100

@@ -403,10 +403,26 @@ def algebraic_velocity(st, t, q, v, a, v0, h, ev, taut):
     e2 = st.ops.evaluate(t + dl, q + dl * vh, vh, taut, st.ops.kin(t + dl))
     D = (e2.F[y] - ev.F[y]) / dl
     v = v.copy()
-    v[y] = np.linalg.solve(ev.K[np.ix_(y, y)], D)
+    v[y] = _solve_blocks(st, t, ev.K[np.ix_(y, y)], D)
     a = a.copy()
     a[y] = (v[y] - v0[y]) / h
     return v, a
+
+
+def _solve_blocks(st, t, Kyy, rhs):
+    """K_yy^-1 rhs; a singular K_yy (a massless block whose ropes and springs went
+    slack: nothing holds it, so it has no position) stops the run (exit 1, results
+    kept) naming the blocks."""
+    try:
+        return np.linalg.solve(Kyy, rhs)
+    except np.linalg.LinAlgError:
+        m = st.m
+        ks = sorted({int(np.flatnonzero(m.E[:, c])[0]) // 3 for c in st.qy})
+        names = ", ".join(m.model.node_names[m.free[k]] for k in ks)
+        raise AnalysisError(f"at t = {t:.6g} s the massless block(s) {names} lost the "
+                            "tension of the ropes and springs that hold them (a rope went "
+                            "slack): a block without mass has then no position; give it "
+                            "a mass (masses) to follow it through slack ropes") from None
 
 
 def algebraic_state(st, t, q, v, taut):
@@ -417,7 +433,7 @@ def algebraic_state(st, t, q, v, taut):
     kin = st.ops.kin(t)
     for _ in range(50):
         ev = st.ops.evaluate(t, q, v, taut, kin)
-        dy = np.linalg.solve(ev.K[np.ix_(y, y)], ev.F[y])
+        dy = _solve_blocks(st, t, ev.K[np.ix_(y, y)], ev.F[y])
         q[y] += dy
         if np.abs(dy).max() <= 1e-14 * st.lscale:
             break
