@@ -419,6 +419,27 @@ def test_luffing_by_rope_example(capsys):
     assert main(["simulate", str(path), "--json"]) == 0
 
 
+def test_csv_body_columns_follow_a_joint_coordinate(tmp_path, capsys):
+    """The boom of luffing_crane_by_rope.yaml is a joint coordinate (free hinge): the
+    CSV's body_boom columns turn with it (audit: they stayed at the reference pose).
+    Planar: its rotation vector is the hinge's turn, |ry| = |boom.position| (to the
+    CSV's digits), and its com moves on a circle about the hinge, so the chord from
+    the start over 2 |sin(phi / 2)| is one radius at every row."""
+    import csv
+    path = Path(LUFFING).parent / "luffing_crane_by_rope.yaml"
+    out = tmp_path / "boom.csv"
+    assert main(["simulate", str(path), "--csv", str(out)]) == 0
+    rows = list(csv.DictReader(out.open()))
+    phi = np.array([float(r["boom.position"]) for r in rows])
+    ry = np.array([float(r["body_boom.ry_rad"]) for r in rows])
+    com = np.array([[float(r[f"body_boom.{a}_m"]) for a in "xyz"] for r in rows])
+    assert abs(phi).max() > 0.1
+    np.testing.assert_allclose(np.abs(ry), np.abs(phi), atol=1e-6)
+    moved = np.abs(phi) > 0.02
+    radius = np.linalg.norm(com[moved] - com[0], axis=1) / (2 * np.abs(np.sin(phi[moved] / 2)))
+    assert radius.max() - radius.min() < 1e-4 * radius.mean()
+
+
 # ----------------------------------------------------------------- luffing by a linear drive
 
 CYLINDER = """cranefe: 1
@@ -595,3 +616,23 @@ def test_trolley_pushed_past_its_range_stops_the_run(tmp_path, capsys):
     rows = csv.read_text().splitlines()
     t_end = float(rows[-1].split(",")[0])
     assert 2.0 < t_end < 6.0
+
+
+def test_animation_frames_follow_a_joint_coordinate():
+    """The animation's positions (outputs/movie.py) of luffing_crane_by_rope.yaml: the
+    boom's tip node B turns with the free hinge the run computed (audit: the frames
+    drew the boom at its reference pose), on its circle about the hinge: its chord
+    from the start is 2 r |sin(phi / 2)| with r its distance from the boom's com's
+    circle centre, checked as the ratio of B's chord to the com's (both on one rigid
+    body turning about one axis: r_B / r_com at every frame)."""
+    from cranefe.outputs.movie import operation_positions
+    model = load(str(Path(LUFFING).parent / "luffing_crane_by_rope.yaml"))
+    res = simulate(model)
+    idx, P = operation_positions(model, res, frames=6)
+    b, nn = model.node_index["B"], len(model.node_names)
+    com = nn + [x.name for x in model.bodies].index("boom")
+    chord_b = np.linalg.norm(P[1:, b] - P[0, b], axis=1)
+    chord_c = np.linalg.norm(P[1:, com] - P[0, com], axis=1)
+    assert chord_b.min() > 0.5
+    ratio = chord_b / chord_c
+    assert ratio.max() - ratio.min() < 1e-9 * ratio.mean()

@@ -82,11 +82,21 @@ def plot_bodies(folder, result, model, dofs):
     return [path]
 
 
+def joint_positions(mech, result, i):
+    """The joint coordinates (torque-, force-, motor-driven and free joints) of an
+    operation run at its sample i: drive name -> (position, speed)."""
+    names = list(result.drive_names)
+    return {d.name: (result.drive_position[i, names.index(d.name)],
+                     result.drive_speed[i, names.index(d.name)])
+            for d in mech.spec.drives if d.coordinate}
+
+
 def operation_body_histories(model, result):
     """(centre-of-mass positions (nt, nb, 3) m in the global frame, rotation vectors
     (nt, nb, 3) rad: axis times angle of each body's rotation from the reference) of
-    an operation run at its sample times. Bodies move with their joints as the drives
-    prescribe them (the operation engine's `Mechanism.body_motions`)."""
+    an operation run at its sample times. Bodies move with their joints: as the drives
+    prescribe them, or as the run computed the joint coordinates (`drive_position`),
+    through the operation engine's `Mechanism.body_motions`."""
     from scipy.spatial.transform import Rotation
 
     from ..analysis.operation.mechanism import Mechanism
@@ -96,7 +106,7 @@ def operation_body_histories(model, result):
     com0 = np.array([b.com for b in model.bodies], dtype=float).reshape(nb, 3)
     pos, rot = np.zeros((nt, nb, 3)), np.zeros((nt, nb, 3))
     for i, t in enumerate(result.times):
-        motions = mech.body_motions(float(t))
+        motions = mech.poses(float(t), joint_positions(mech, result, i))[0]
         for b in range(nb):
             R, p = motions[b][0], motions[b][3]
             pos[i, b] = R @ com0[b] + p

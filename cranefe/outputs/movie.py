@@ -9,6 +9,7 @@ under one camera fitted to the whole run (`render.fit_camera`)."""
 
 import numpy as np
 
+from .histories import joint_positions
 from .mesh import KINDS, line_mesh
 from .render import (BACKGROUND, STYLE, _polydata, _up, add_ground, backend, check_view,
                      fit_camera, write_animation)
@@ -36,11 +37,10 @@ def operation_positions(model, result, frames=MAX_FRAMES):
     out = np.repeat(np.asarray(mesh.points, dtype=float)[None], len(idx), axis=0)
     for f, i in enumerate(idx):
         t = float(result.times[i])
-        X = mech.kinematics(t)[0]
+        motions, X = mech.poses(t, joint_positions(mech, result, i))
         out[f, mech.kin] = X[mech.kin]
         for node, k in masses:
             out[f, node] = result.mass_position[i, k]
-        motions = mech.body_motions(t)
         for b in range(len(model.bodies)):
             R, p = motions[b][0], motions[b][3]
             out[f, nn + b] = R @ com0[b] + p

@@ -143,6 +143,26 @@ class Mechanism:
         self.free_bodies = free_bodies
         self.driven_joints = driven
 
+    def poses(self, t, joints):
+        """(every body's motion (R, dR, ddR, p, dp, ddp), the positions X (nn, 3) of the
+        nodes the bodies carry) at t, the joint coordinates at `joints` (drive name ->
+        (position, speed), as a result reports them; their accelerations taken 0: poses
+        and velocities only), the profiles' joints as they prescribe; the nodes of an
+        elastic structure (flexible.py) with their frame, without their deflection."""
+        states = [(*joints[d.name], 0.0) if d.coordinate else d.motion(t)
+                  for d in self._chain_drives]
+        mot = self.body_motions(t, states)
+        X = np.zeros((self.nn, 3))
+        for b, idx, Xr in self._groups:
+            R, p = mot[b][0], mot[b][3]
+            X[idx] = Xr @ R.T + p
+        if self.flex is not None:           # elastic nodes: with their frame, undeflected
+            for f, k in self.flex.frames:
+                idx = np.array([i for i in self.flex.en[k] if i < self.nn], dtype=int)
+                R, p = mot[f][0], mot[f][3]           # (the ground: f = GROUND)
+                X[idx] = self.model.coords[idx] @ R.T + p
+        return mot, X
+
     def body_motions(self, t, states=None):
         """(R, dR, ddR, p, dp, ddp) of every body at t (ground: identity); `states`:
         the driven joints' (s, s', s'') at t in the order of the chain, if known."""
