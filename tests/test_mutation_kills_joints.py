@@ -10,8 +10,8 @@ variable. Each is checked here against an independent computation:
   and the pair integral by direct sums sum m_k X_k X_k^T, sum m_k (A X_k + a).(B X_k + b),
   not by the identity Theta = tr(I_c)/2 I - I_c + m c c^T the code uses;
 - a hinge's rotation as the matrix exponential expm(theta K) (scipy), whose derivatives
-  in s, theta = sign s, are exactly sign K expm(theta K) and K^2 expm(theta K), instead of
-  the code's Rodrigues form; p = Rp (a - R_j a) + pp, so dp/ds = -Rp R_j' a.
+  in the angle are exactly K^k expm(theta K), instead of the code's Rodrigues form
+  (`hinge_series`); p = a - R a, so p^(k) = -R^(k) a; a slider's (`slider_series`).
 
 Tolerances: 1e-12 relative, sums of a few products of O(1)-O(100) numbers in double
 precision (round-off about 1e-14 relative).
@@ -22,7 +22,12 @@ from types import SimpleNamespace
 import numpy as np
 from scipy.linalg import expm
 
-from cranefe.analysis.operation.joints import joint_jacobian, pair, subtree_mass
+from cranefe.analysis.operation.joints import (
+    hinge_series,
+    pair,
+    slider_series,
+    subtree_mass,
+)
 
 RNG = np.random.default_rng(20)
 
@@ -124,50 +129,48 @@ def _skew(n):
     return np.array([[0.0, -n[2], n[1]], [n[2], 0.0, -n[0]], [-n[1], n[0], 0.0]])
 
 
-def _parent():
-    Rp = expm(_skew(np.array([0.3, -1.1, 0.7])))
-    return (Rp, np.array([1.0, 2.0, -0.5]))
-
-
-def test_hinge_jacobian_against_the_matrix_exponential():
+def test_hinge_series_against_the_matrix_exponential():
+    """Rodrigues' R(ang) and its angle derivatives against expm(ang K): R^(k) = K^k R
+    (K, the axis' skew matrix, commutes with expm(ang K)); p = a - R a, so p^(k) =
+    -R^(k) a."""
     n = np.array([1.0, 2.0, -2.0]) / 3.0
     K = _skew(n)
     a = np.array([0.4, -1.3, 2.2])
-    Rp, _ = _parent()
-    for sign, s in ((1.0, 0.83), (-1.0, 0.83), (-1.0, -2.4)):
-        Rj = expm(sign * s * K)
-        Rq_ref = Rp @ (sign * K @ Rj)          # d/ds expm(sign s K)
-        Rqq_ref = Rp @ (K @ K @ Rj)            # sign^2 = 1
-        Rq, pq, Rqq, pqq = joint_jacobian(_parent(), True, K, K @ K, a, n, sign, s)
-        assert np.allclose(Rq, Rq_ref, rtol=0, atol=1e-13)
-        assert np.allclose(Rqq, Rqq_ref, rtol=0, atol=1e-13)
-        # p(s) = Rp (a - Rj a) + pp: dp/ds = -Rp Rj' a
-        assert np.allclose(pq, -Rq_ref @ a, rtol=0, atol=1e-12)
-        assert np.allclose(pqq, -Rqq_ref @ a, rtol=0, atol=1e-12)
+    for ang in (0.83, -2.4, 3.9):
+        E = expm(ang * K)
+        refs = [E, K @ E, K @ K @ E, K @ K @ K @ E]
+        Rs, ps = hinge_series(K, K @ K, a, ang)
+        for k in range(4):
+            assert np.allclose(Rs[k], refs[k], rtol=0, atol=1e-13)
+        assert np.allclose(ps[0], a - E @ a, rtol=0, atol=1e-13)
+        for k in range(1, 4):
+            assert np.allclose(ps[k], -refs[k] @ a, rtol=0, atol=1e-12)
 
 
-def test_hinge_jacobian_against_central_differences_of_the_motion():
-    """The whole motion x = Rp (Rj X + a - Rj a) + pp differenced in s (h = 1e-4:
-    truncation h^2/6 |x'''| ~ 1e-8, round-off 1e-16 / h ~ 1e-12)."""
+def test_hinge_series_against_central_differences_of_the_motion():
+    """The motion x = R X + a - R a differenced in the angle (h = 1e-4: truncation
+    h^2/6 |x'''| ~ 1e-8, round-off 1e-16 / h ~ 1e-12; the second difference: round-off
+    1e-16 / h^2 ~ 1e-8)."""
     n = np.array([0.0, 0.6, 0.8])
     K = _skew(n)
     a = np.array([1.0, -0.5, 0.25])
-    Rp, pp = _parent()
     X = np.array([2.0, 1.0, -3.0])
-    sign, s, h = -1.0, 0.4, 1e-4
+    ang, h = 0.4, 1e-4
 
-    def x(s):
-        Rj = expm(sign * s * K)
-        return Rp @ (Rj @ X + a - Rj @ a) + pp
-    Rq, pq, _, _ = joint_jacobian((Rp, pp), True, K, K @ K, a, n, sign, s)
-    assert np.allclose(Rq @ X + pq, (x(s + h) - x(s - h)) / (2 * h), rtol=0, atol=1e-7)
+    def x(t):
+        R = expm(t * K)
+        return R @ X + a - R @ a
+    (R, R1, R2, _), (p, p1, p2, _) = hinge_series(K, K @ K, a, ang)
+    assert np.allclose(R @ X + p, x(ang), rtol=0, atol=1e-13)
+    assert np.allclose(R1 @ X + p1, (x(ang + h) - x(ang - h)) / (2 * h), rtol=0, atol=1e-7)
+    assert np.allclose(R2 @ X + p2, (x(ang + h) - 2 * x(ang) + x(ang - h)) / h ** 2,
+                       rtol=0, atol=1e-6)
 
 
-def test_slider_jacobian():
-    Rp, _ = _parent()
-    n = np.array([0.0, 0.0, 1.0])
-    for sign in (1.0, -1.0):
-        Rq, pq, Rqq, pqq = joint_jacobian(_parent(), False, None, None, None, n, sign, 3.0)
-        assert not Rq.any() and not Rqq.any() and not pqq.any()
-        assert Rq.shape == Rqq.shape == (3, 3) and pqq.shape == (3,)
-        assert np.allclose(pq, sign * Rp[:, 2], rtol=0, atol=1e-15)
+def test_slider_series():
+    n = np.array([0.0, 0.6, 0.8])
+    Rs, ps = slider_series(n, 3.0)
+    assert np.array_equal(Rs[0], np.eye(3)) and not any(R.any() for R in Rs[1:])
+    assert np.allclose(ps[0], 3.0 * n, rtol=0, atol=1e-15)
+    assert np.allclose(ps[1], n, rtol=0, atol=1e-15)
+    assert not ps[2].any() and not ps[3].any()
