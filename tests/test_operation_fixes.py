@@ -288,14 +288,16 @@ def test_messages_name_named_joints(tmp_path, capsys):
 
 def test_a_failed_run_reports_the_time_it_reached_and_no_later_events(tmp_path):
     """The torque drum above runs out of rope at ~2 s of a 5 s scene: duration_s is the
-    time reached, not the scene's 5 s, and no event after it is listed."""
+    time reached (the last accepted step: at or after the last output sample, within
+    one output step of 5 ms), not the scene's 5 s, and no event after it is listed."""
     p = scene(tmp_path, OVERHEAD, "  duration: 5\n  drives:\n    hoist: {drum: hoist, "
               "torque: 0}\n")
     with pytest.raises(AnalysisError) as exc:
         simulate(load(p))
     doc = exc.value.result.to_dict()
     assert doc["status"] == 1 and doc["duration_s"] < 2.5
-    assert doc["duration_s"] == pytest.approx(exc.value.result.times[-1])
+    last = exc.value.result.times[-1]
+    assert last <= doc["duration_s"] < last + 5.0 / 1000
     assert all(float(e.split(" s:")[0]) <= doc["duration_s"] for e in doc["events"])
 
 

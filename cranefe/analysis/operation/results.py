@@ -201,6 +201,12 @@ class Recorder:
         self.taut = taut
         self._sample(ev, q, v)
 
+    def _reached(self, t):
+        """The time a failed run reached: its last accepted state (later than the last
+        output sample)."""
+        last = getattr(self.last, "t", None)
+        return float(t[-1]) if last is None else max(float(t[-1]), float(last))
+
     def switch(self, t, ev, taut):
         self.last = ev
         self.taut = taut
@@ -357,7 +363,7 @@ class Recorder:
         labels += [f"drum {model.drums[k].name}" for k in m.qdrums]
         return OperationResult(
             model.name, model.scene or "", model.effects.as_dict(), tuple(labels),
-            float(t[-1]) if status and len(t) else spec.duration, st.steps,
+            self._reached(t) if status and len(t) else spec.duration, st.steps,
             st.rejected, st.newton_iterations, t,
             tuple(model.node_names[i] for i in self.mass_nodes), X,
             tuple(r.name for r in model.ropes), F, static, fmax, tmax,
