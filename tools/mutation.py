@@ -134,7 +134,8 @@ PRESETS = {
                  ["tests/test_closed_forms.py", "tests/test_kernels.py",
                   "tests/test_members.py", "tests/test_mutation_kills_system.py",
                   "tests/test_mutation_kills_statics.py",
-                  "tests/test_mutation_kills_assembly.py"]),
+                  "tests/test_mutation_kills_assembly.py",
+                  "tests/test_mutation_kills_assembly_beams.py"]),
 }
 
 
