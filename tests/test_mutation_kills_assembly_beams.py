@@ -11,7 +11,9 @@ public API (cranefe.load + cranefe.modes on small models), against closed forms:
 - a beam with mass clamped at both ends but released (ry) there: a simply supported
   beam, w_n = (n pi / L)^2 sqrt(EI / rho A);
 - a massless beam with a centre mass, clamped at both ends (k = 192 EI / L^3) and with
-  one end released (a propped cantilever, k = 768 EI / (7 L^3)).
+  one end released (a propped cantilever, k = 768 EI / (7 L^3));
+- a lumped-mass pinned beam against the exact dispersion of cubic elements;
+- an Euler-Bernoulli beam with mass next to a Timoshenko member (no rotary inertia).
 """
 
 import numpy as np
@@ -155,3 +157,50 @@ def test_centre_mass_on_a_clamped_and_a_propped_beam(tmp_path, rel, factor):
     axial = np.sqrt(2 * E * 1e-3 / (L / 2) / m)
     w = _modes(tmp_path, CENTRE.format(rel=rel))
     assert w == pytest.approx(np.sort([bend, axial]), rel=1e-9)
+
+
+def test_lumped_beam_mass_on_a_simply_supported_beam(tmp_path):
+    """Lumped mass (m_n = rho A h at each interior node, translations only) on n cubic
+    elements of a pinned-pinned beam: the sine modes w_j = sin(j theta), theta = k pi / n,
+    are exact for the discrete system. Condensing the massless rotations of a wave
+    (w_j, phi_j) = (W, Phi) e^(i j theta) from the assembled element stiffness
+    EI/h^3 [[12, 6h, -12, 6h], [6h, 4h^2, -6h, 2h^2], ...]: the moment row gives
+    Phi = 3 i W sin(theta) / (h (2 + cos theta)), the force row then
+    w^2 = 12 EI (1 - cos theta)^2 / (m_n h^3 (2 + cos theta)) (-> (k pi / L)^4 EI / rho A
+    as h -> 0). Tolerance 1e-9 (eigen-solve); the consistent mass differs from these by
+    3.4e-5, 5.8e-4 and 3.3e-3."""
+    n, L = 8, 4.0
+    h, EI, mn = L / n, E * 1e-7, 7850 * 1e-3 * L / n
+    th = np.arange(1, 4) * np.pi / n
+    exact = np.sqrt(12 * EI * (1 - np.cos(th)) ** 2 / (mn * h**3 * (2 + np.cos(th))))
+    w = _modes(tmp_path, SIMPLE.replace("elements: 16", "elements: 8, mass: lumped"))
+    assert w[:3] == pytest.approx(exact, rel=1e-9)
+
+
+MIXED = """cranefe: 1
+plane: xz
+nodes: {O: [0, 0, 0], T: [1, 0, 0], P: [0, 0, 5], Q: [2, 0, 5]}
+ground: [O, P]
+members:
+  thick: {type: beam, nodes: [O, T], E: 2.1e11, G: 8.1e10, A: 0.02, Iy: 6.6666666666666667e-5,
+          Asz: 0.016666666666666667, rho: 7850, elements: 8}
+  plain: {type: beam, nodes: [P, Q], E: 2.1e11, A: 0.02, Iy: 6.6666666666666667e-5,
+          rho: 7850, elements: 16}
+effects: {structure: flexible, sway: false}
+"""
+
+
+def test_an_euler_bernoulli_beam_next_to_a_timoshenko_one_has_no_rotary_inertia(tmp_path):
+    """The Euler-Bernoulli cantilever `plain` (2 m, the same thick section, L / r = 35)
+    shares the model with a Timoshenko member: its mass must stay Euler-Bernoulli (no
+    rotary inertia rho I). Exact: w_k = (beta_k L)^2 sqrt(EI / (rho A L^4)) with
+    beta_1 L = 1.8751040687, beta_2 L = 4.6940911330 (roots of 1 + cos x cosh x = 0,
+    solved here). 16 cubic elements: errors 1.3e-7 and 5.1e-6 (h^4); tolerance 1e-5,
+    which the rotary inertia exceeds (checked with `rotary` dropped)."""
+    roots = [brentq(lambda x: 1 + np.cos(x) * np.cosh(x), a, b, xtol=1e-14)
+             for a, b in ((1.5, 2.5), (4.0, 5.0))]
+    c = np.sqrt(E * 6.6666666666666667e-5 / (7850 * 0.02 * 2.0**4))
+    exact = np.array(roots) ** 2 * c
+    w = _modes(tmp_path, MIXED)
+    got = [w[np.argmin(abs(w - r))] for r in exact]
+    assert got == pytest.approx(exact, rel=1e-5)
