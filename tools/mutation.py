@@ -78,7 +78,8 @@ PRESETS = {
     # reach every function on small models solved by hand, in seconds
     "statics": ("cranefe/statics.py",
                 ["tests/test_mutation_kills_statics.py",
-                 "tests/test_mutation_kills_statics_solve.py"]),
+                 "tests/test_mutation_kills_statics_solve.py",
+                 "tests/test_mutation_kills_statics_effects.py"]),
     "statics_broad": ("cranefe/statics.py",
                       ["tests/test_closed_forms.py", "tests/test_audit_numerics.py",
                        "tests/test_members.py",
@@ -133,7 +134,8 @@ PRESETS = {
                  ["tests/test_closed_forms.py", "tests/test_kernels.py",
                   "tests/test_members.py", "tests/test_mutation_kills_system.py",
                   "tests/test_mutation_kills_statics.py",
-                  "tests/test_mutation_kills_assembly.py"]),
+                  "tests/test_mutation_kills_assembly.py",
+                  "tests/test_mutation_kills_assembly_beams.py"]),
 }
 
 
