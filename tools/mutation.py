@@ -135,7 +135,8 @@ PRESETS = {
                   "tests/test_members.py", "tests/test_mutation_kills_system.py",
                   "tests/test_mutation_kills_statics.py",
                   "tests/test_mutation_kills_assembly.py",
-                  "tests/test_mutation_kills_assembly_beams.py"]),
+                  "tests/test_mutation_kills_assembly_beams.py",
+                  "tests/test_timoshenko_geometric.py"]),
 }
 
 
