@@ -23,7 +23,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ._common import pyplot, save, write_csv
+from ._common import pyplot, rewrite_doc_blocks, save, write_csv
 
 DESCRIPTION = "operation scenes with inextensible ropes and without sway against the " \
               "elastic, swaying reference: error and cost"
@@ -42,10 +42,6 @@ VARIANTS = (("elastic, sway (reference)", {}),
 KEYS = ["scene", "duration_s", "variant", "steps", "rejected", "cpu_s", "real_time_factor",
         "cpu_ratio", "position_error_m", "sway_error_deg", "sway_max_error_deg",
         "sway_residual_error_deg", "peak_force_difference", "dynamic_factor"]
-BEGIN = "<!-- BEGIN cranefe study operation_effects: table -->"
-END = "<!-- END cranefe study operation_effects: table -->"
-BEGIN_F = "<!-- BEGIN cranefe study operation_effects: formulation -->"
-END_F = "<!-- END cranefe study operation_effects: formulation -->"
 
 
 def scene_model(name, effects, duration=None):
@@ -244,23 +240,6 @@ def formulation_markdown(rows):
     return "\n".join(lines) + "\n"
 
 
-def write_docs(docs, rows, form):
-    path = os.path.join(docs, "operations.md")
-    if not os.path.exists(path):
-        return []
-    with open(path) as fh:
-        text = fh.read()
-    for (begin, end), md in (((BEGIN, END), markdown(rows)),
-                             ((BEGIN_F, END_F), formulation_markdown(form))):
-        if begin not in text or end not in text:
-            return []
-        a, b = text.index(begin) + len(begin), text.index(end)
-        text = text[:a] + "\n" + md + text[b:]
-    with open(path, "w") as fh:
-        fh.write(text)
-    return [path]
-
-
 def run(outdir, quick=False):
     import csv
     rows, hist = measure(quick)
@@ -268,11 +247,12 @@ def run(outdir, quick=False):
     written = [write_csv(outdir, "operation_effects.csv", rows, KEYS),
                write_csv(outdir, "operation_effects_formulation.csv", form),
                _plot(outdir, hist)]
-    docs = os.path.join(os.path.dirname(os.path.abspath(outdir)), "docs")
-    if os.path.isdir(docs) and not quick:
+    docs = os.path.join(os.path.dirname(os.path.abspath(outdir)), "docs", "operations.md")
+    if not quick:
         tables = []
         for p in written[:2]:                   # the page quotes the CSVs as written
             with open(p) as fh:
                 tables.append(list(csv.DictReader(fh)))
-        written += write_docs(docs, *tables)
+        written += rewrite_doc_blocks(docs, "operation_effects", (
+            ("table", markdown(tables[0])), ("formulation", formulation_markdown(tables[1]))))
     return written

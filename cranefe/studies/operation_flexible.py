@@ -26,7 +26,7 @@ from ..analysis.operation.integrate import simulate
 from ..analysis.operation.mechanism import Mechanism
 from ..analysis.operation.scene import parse
 from ..model import load
-from ._common import pyplot, save, write_csv
+from ._common import pyplot, rewrite_doc_blocks, save, write_csv
 
 DESCRIPTION = "operation scenes with an elastic structure: rope peak forces and cost " \
     "against the rigid structure"
@@ -129,14 +129,9 @@ def run(outdir, quick=False):
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     paths.append(save(fig, outdir, "operation_flexible.png"))
-    docs = os.path.join(os.path.dirname(os.path.abspath(outdir)), "docs", "operations.md")
-    if os.path.exists(docs) and not quick:
-        from .operations import replace_block
+    if not quick:
+        docs = os.path.join(os.path.dirname(os.path.abspath(outdir)), "docs", "operations.md")
         with open(paths[0]) as fh:                  # the page quotes the CSV as written
             table = markdown(list(csv.DictReader(fh)))
-        with open(docs) as fh:
-            text = fh.read()
-        with open(docs, "w") as fh:
-            fh.write(replace_block(text, "operation_flexible", table))
-        paths.append(docs)
+        paths += rewrite_doc_blocks(docs, "operation_flexible", (("table", table),))
     return paths

@@ -40,7 +40,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ._common import pyplot, save, write_csv
+from ._common import pyplot, rewrite_doc_blocks, save, write_csv
 
 DESCRIPTION = "operation engine: real-time factor of the tower-crane cycle vs tolerance, " \
     "side by side with Exudyn"
@@ -276,14 +276,9 @@ def run(outdir, quick=False, repeat=None):
     ax[1].legend(fontsize=7)
     fig.suptitle(f"Tower-crane cycle ({duration:g} s)")
     paths.append(save(fig, outdir, "operation_speed.png"))
-    docs = os.path.join(os.path.dirname(os.path.abspath(outdir)), "docs", "operations.md")
-    if os.path.exists(docs) and not quick:
-        from .operations import replace_block
-        with open(docs) as fh:
-            text = fh.read()
-        with open(docs, "w") as fh:
-            fh.write(replace_block(text, "operation_speed", markdown(rows)))
-        paths.append(docs)
+    if not quick:
+        docs = os.path.join(os.path.dirname(os.path.abspath(outdir)), "docs", "operations.md")
+        paths += rewrite_doc_blocks(docs, "operation_speed", (("table", markdown(rows)),))
     return paths
 
 

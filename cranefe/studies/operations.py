@@ -17,7 +17,8 @@ Exudyn").
 
 Writes results/operation_cost.csv, operation_cost_orders.csv, operation_cost.png,
 operation_peers.csv, operation_peers.png, and regenerates the measured blocks of
-docs/operations.md and docs/accuracy.md (between the markers BEGIN/END of this study)
+docs/operations.md and docs/accuracy.md (between the markers `cranefe study operations:
+NAME` of this study)
 when a docs/ folder sits beside the output folder.
 """
 
@@ -28,7 +29,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ._common import pyplot, save, write_csv
+from ._common import doc_block, pyplot, rewrite_doc_blocks, save, write_csv
 
 DESCRIPTION = "operation engine: error vs tolerance and cost (reference: tighter " \
               "tolerance, cross-checked by Radau); Exudyn on the same scenes"
@@ -57,7 +58,6 @@ COST_KEYS = ["scene", "duration_s", "method", "tolerance", "steps", "rejected",
 ORDER_QUANTITIES = ("peak_force_error", "sway_max_error_deg", "sway_residual_error_deg",
                     "end_position_error_m", "energy_error")
 PEER_KEYS = ["scene", "program", "setting", "quantity", "value", "reference", "difference"]
-BEGIN, END = "<!-- BEGIN cranefe study operations -->", "<!-- END cranefe study operations -->"
 
 
 def scene_model(name, duration=None, tolerance=None, output_step=None):
@@ -493,16 +493,9 @@ def accuracy_markdown(cost):
     return "\n".join(lines) + "\n"
 
 
-def replace_block(text, name, block):
-    """Replace the text between the study's BEGIN/END markers named `name`."""
-    begin, end = f"{BEGIN[:-4]}: {name} -->", f"{END[:-4]}: {name} -->"
-    a, b = text.index(begin) + len(begin), text.index(end)
-    return text[:a] + "\n" + block.rstrip("\n") + "\n" + text[b:]
-
-
 def block(text, name):
-    begin, end = f"{BEGIN[:-4]}: {name} -->", f"{END[:-4]}: {name} -->"
-    return text[text.index(begin) + len(begin):text.index(end)].strip("\n")
+    """A measured block of this study on a docs page (tests/test_docs_tables.py)."""
+    return doc_block(text, "operations", name)
 
 
 def write_docs(docs, cost, order_rows, peers):
@@ -511,18 +504,7 @@ def write_docs(docs, cost, order_rows, peers):
     for page, parts in (("operations.md", (("cost", cost_markdown(cost, order_rows)),
                                            ("peers", peers_markdown(peers)))),
                         ("accuracy.md", (("engine", accuracy_markdown(cost)),))):
-        path = os.path.join(docs, page)
-        if not os.path.exists(path):
-            continue
-        text = open(path).read()
-        try:
-            for name, md in parts:
-                text = replace_block(text, name, md)
-        except ValueError:                       # a page without the markers
-            continue
-        with open(path, "w") as fh:
-            fh.write(text)
-        written.append(path)
+        written += rewrite_doc_blocks(os.path.join(docs, page), "operations", parts)
     return written
 
 
