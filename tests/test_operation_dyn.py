@@ -8,12 +8,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_operation import mechanism, scene
 import scipy.linalg as sla
 
 from cranefe.cli import main
 from cranefe.model import load
 from cranefe.analysis.operation.integrate import simulate
-from cranefe.analysis.operation.mechanism import Mechanism
 from cranefe.analysis.operation.scene import parse
 
 G = 9.81
@@ -49,21 +49,6 @@ joints:
 ropes:
   hoist: {EA: EAVAL, path: [K, H]}
 """
-
-
-def scene(tmp_path, model_text, analysis, name="scene.yaml", **subs):
-    for k, v in subs.items():
-        model_text = model_text.replace(k, str(v))
-    model = tmp_path / f"model_{name}"
-    model.write_text(model_text)
-    path = tmp_path / name
-    path.write_text(f"cranefe: 1\nscene: test\nmodel: {model}\n"
-                    f"analysis:\n  type: operation\n{analysis}")
-    return path
-
-
-def mechanism(model):
-    return Mechanism(model, parse(model))
 
 
 def test_slewing_body_under_a_constant_torque(tmp_path):

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_operation import scene
 
 from cranefe.cli import main
 from cranefe.errors import AnalysisError
@@ -62,15 +63,6 @@ ropes:
 """
 
 
-def scene(tmp_path, model_text, analysis, name="scene.yaml"):
-    model = tmp_path / f"model_{name}"
-    model.write_text(model_text)
-    path = tmp_path / name
-    path.write_text(f"cranefe: 1\nmodel: {model}\nanalysis:\n  type: operation\n"
-                    f"{analysis}")
-    return path
-
-
 def drives(path):
     return parse(load(path)).drives
 
@@ -99,7 +91,7 @@ def test_profile_numbers_take_units_of_their_targets_dimension(tmp_path):
     ref = parse(load(scene(tmp_path, OVERHEAD, "  duration: 10\n  drives:\n"
                            "    trolley: {slider: trolley_travel, profile: {type: "
                            "trapezoid, distance: 2, v_max: 0.6666666666666666, "
-                           "a_max: 0.5}}\n", "ref.yaml"))).drives[0]
+                           "a_max: 0.5}}\n", name="ref.yaml"))).drives[0]
     for t in (0.5, 2.0, 3.9):
         np.testing.assert_allclose(trolley.motion(t), ref.motion(t), rtol=1e-14)
     assert hoist.motion(2.0)[1] == pytest.approx(40 / 60 / 0.15, rel=1e-14)
@@ -263,7 +255,7 @@ def test_luffing_by_a_cylinder_checks_the_hinge_range_before_integrating(tmp_pat
     refused(p, capsys, "analysis.drives.c.profile", f"[{-turn:.6g}, 0] deg",
             "'foot' (joints[0])", "joints[0].range_deg")
     p = scene(tmp_path, CYLINDER.replace("RANGE", ", range_deg: [-24, 10]"), drive,
-              "ok.yaml")
+              name="ok.yaml")
     assert parse(load(p)).drives[0].target == "linear"
     from cranefe.analysis.operation.mechanism import Mechanism
     Mechanism(load(p), parse(load(p)))          # the check passes inside the range

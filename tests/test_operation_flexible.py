@@ -10,6 +10,7 @@ from pathlib import Path
 import mpmath as mp
 import numpy as np
 import pytest
+from test_operation import mechanism, scene
 import scipy.linalg as sla
 
 from cranefe.analysis.modal import modes
@@ -67,24 +68,13 @@ EI_ROT, RHOA_ROT, L_ROT = 2.1e5, 7.85, 10.0
 
 def write(tmp_path, model_text, analysis, name="s.yaml", effects="{structure: flexible}",
           **subs):
-    for k, v in subs.items():
-        model_text = model_text.replace(k, str(v))
-    mp_ = tmp_path / f"model_{name}"
-    mp_.write_text(model_text)
-    path = tmp_path / name
-    path.write_text(f"cranefe: 1\nscene: test\nmodel: {mp_}\neffects: {effects}\n"
-                    f"analysis:\n  type: operation\n{analysis}")
-    return path
+    return scene(tmp_path, model_text, analysis, effects, name, **subs)
 
 
 def jib(tmp_path, Iy=2.0e-2, nel=6, mass="lumped", analysis="  duration: 1\n", name="j",
         g=G):
     return load(write(tmp_path, JIB, analysis, name=f"{name}.yaml", IYVAL=Iy, NEL=nel,
                       MASS=mass, GVAL=-g))
-
-
-def mechanism(model):
-    return Mechanism(model, parse(model))
 
 
 # ----------------------------------------------------------------- linear core

@@ -11,6 +11,7 @@ from itertools import pairwise
 import numpy as np
 import scipy.linalg as sla
 import pytest
+from test_operation import scene
 from scipy.integrate import solve_ivp
 
 from cranefe.analysis.operation.integrate import Stepper, simulate
@@ -39,17 +40,6 @@ joints:
 """
 J_JIB = 3.0e5 + 4000 * 12**2          # about the axis: Izz + m (cx^2 + cy^2)
 M_T, I_T = 600.0, 70.0
-
-
-def scene(tmp_path, model_text, analysis, effects="", name="scene.yaml", **subs):
-    for k, v in subs.items():
-        model_text = model_text.replace(k, str(v))
-    model = tmp_path / f"model_{name}"
-    model.write_text(model_text)
-    path = tmp_path / name
-    path.write_text(f"cranefe: 1\nscene: test\nmodel: {model}\n{effects}"
-                    f"analysis:\n  type: operation\n{analysis}")
-    return path
 
 
 def start(model, speeds):
@@ -344,7 +334,7 @@ def test_sway_off_load_guided_by_a_free_trolley_rides_on_its_joint(tmp_path):
     F = 1500.0
     path = scene(tmp_path, CART, "  duration: 10\n  drives:\n"
                  f"    c: {{slider: travel, force: {F}}}\n",
-                 effects="effects: {sway: false}\n")
+                 effects="{sway: false}")
     res = simulate(load(path))
     t = res.times
     s = F * t**2 / (2 * 3000)
@@ -373,7 +363,7 @@ def test_sway_off_load_on_a_trolley_running_out_along_a_torque_free_slewing_jib(
     path = scene(tmp_path, text, "  duration: 10\n  tolerance: 1.0e-10\n  drives:\n"
                  "    s: {hinge: slew, torque: 0}\n"
                  f"    t: {{slider: travel, profile: {{type: table, speed: [[0, {v}]]}}}}\n",
-                 effects="effects: {sway: false}\n", C_Y=0.0)
+                 effects="{sway: false}", C_Y=0.0)
     model = load(path)
     mech, init = start(model, [w0])
     assert mech.guided_joint.all()
