@@ -222,24 +222,28 @@ def test_elastic_stiffness_without_beams():
 
 
 def test_pattern_scales_rows_and_blocks_to_unit_size():
-    """R rows (3, 4, 0) (norm 5), (0, 0, 0) (norm 0: left out) and (0, 2, 0) with c = 0
-    (left out); one elastic block [[1, 2], [2, 1]] on (1, 2), eigenvalues 3 and -1:
+    """R rows (3, 4, 0) (norm 5, c = 1), (0, 0, 0) (norm 0: left out), (0, 2, 0) with
+    c = 0 (left out) and (0.3, 0, 0.4) (norm 0.5: scaled up to (0.6, 0, 0.8)); one
+    elastic block [[1, 2], [2, 1]] on (1, 2), eigenvalues 3 and -1:
     |B| / 3 = [[2/3, 1/3], [1/3, 2/3]]; one geometric block [[0, 0], [0, -5]] on (0, 2):
-    |B| / 5 = diag(0, 1). P = (0.6, 0.8, 0)^T (0.6, 0.8, 0) + both; then T^T P T."""
-    R = sp.csr_matrix(np.array([[3.0, 4.0, 0.0], [0.0, 0.0, 0.0], [0.0, 2.0, 0.0]]))
-    springs = SimpleNamespace(R=R, c=np.array([5.0, 7.0, 0.0]))
+    |B| / 5 = diag(0, 1). P = sum of the scaled rows' outer products + both blocks;
+    then T^T P T."""
+    R = sp.csr_matrix(np.array([[3.0, 4.0, 0.0], [0.0, 0.0, 0.0], [0.0, 2.0, 0.0],
+                                [0.3, 0.0, 0.4]]))
+    springs = SimpleNamespace(R=R, c=np.array([1.0, 7.0, 0.0, 2.0]))
     T = np.array([[1.0, 0.0], [2.0, 1.0], [0.0, 3.0]])
     dofs = SimpleNamespace(T=sp.csr_matrix(T))
     el = Blocks(np.array([[1, 2]]), np.array([[[1.0, 2.0], [2.0, 1.0]]]))
     geo = Blocks(np.array([[0, 2]]), np.array([[[0.0, 0.0], [0.0, -5.0]]]))
-    P = np.array([[0.36, 0.48, 0.0], [0.48, 0.64, 0.0], [0.0, 0.0, 0.0]])
+    P0 = np.array([[0.36, 0.48, 0.0], [0.48, 0.64, 0.0], [0.0, 0.0, 0.0]]) \
+        + np.array([[0.36, 0.0, 0.48], [0.0, 0.0, 0.0], [0.48, 0.0, 0.64]])
+    P = P0.copy()
     P[1:, 1:] += np.array([[2.0, 1.0], [1.0, 2.0]]) / 3
     P[2, 2] += 1.0
     got = pattern(springs, dofs, [el], [geo])
     assert isinstance(got, sp.csr_matrix)
     np.testing.assert_allclose(got.toarray(), T.T @ P @ T, rtol=0, atol=1e-14)
     # without blocks: the rows only
-    P0 = np.array([[0.36, 0.48, 0.0], [0.48, 0.64, 0.0], [0.0, 0.0, 0.0]])
     np.testing.assert_allclose(pattern(springs, dofs).toarray(), T.T @ P0 @ T, atol=1e-14)
     # elastic blocks only, geometric only
     np.testing.assert_allclose(pattern(springs, dofs, [el]).toarray(),
@@ -278,11 +282,11 @@ def test_null_space_of_a_pattern_with_contrast_and_an_untouched_coordinate():
 
 def test_null_space_threshold_is_relative_to_the_largest_scaled_eigenvalue():
     """Two unit-diagonal coordinates coupled by a correlation rho: the scaled matrix
-    [[1, rho], [rho, 1]] has eigenvalues 1 - rho and 1 + rho, eigenvector (1, -1) for
-    1 - rho. 1 - rho = 0.5 NULL_TOL is null, 2 NULL_TOL is not (top = 2 - ...: the
-    threshold NULL_TOL * top is about 2 NULL_TOL, so use 0.5 and 4 times NULL_TOL). With
-    the diagonal scaled by (1, 100) (d = 1, 1e4) the null vector is (1, -1e-2) up to
-    scale: the scaling is undone on the way back (s = 1 / sqrt(d))."""
+    [[1, rho], [rho, 1]] has eigenvalues 1 - rho and 1 + rho (about 2, so the threshold
+    NULL_TOL * top is about 2 NULL_TOL), eigenvector (1, -1) for 1 - rho: a gap
+    1 - rho = 0.5 NULL_TOL is null, 4 NULL_TOL is not. With the diagonal scaled by
+    (1, 100) (d = 1, 1e4) the null vector is (1, -1e-2) up to scale: the scaling is
+    undone on the way back (s = 1 / sqrt(d))."""
     for gap, free in ((0.5 * NULL_TOL, True), (4 * NULL_TOL, False)):
         rho = 1 - gap
         A = np.array([[1.0, rho], [rho, 1.0]])
@@ -292,9 +296,8 @@ def test_null_space_threshold_is_relative_to_the_largest_scaled_eigenvalue():
             _same_columns(N, np.array([[1.0, -0.01]]).T)
         else:
             assert N.shape == (2, 0)
-    # a pattern whose largest scaled eigenvalue is below 1: the threshold uses 1 (top =
-    # max(w[-1], 1)); P = diag(0.5 NULL_TOL-size pieces) after scaling is the identity,
-    # so nothing is free whatever the size of P
+    # tiny diagonal entries: the scaled matrix is the identity, nothing is free whatever
+    # the size of P
     assert null_space(np.diag([1e-30, 1e-20])).shape == (2, 0)
     # the explicit tolerance argument: eigenvalues 1 - rho = 1e-6 free with tol 1e-5
     A = np.array([[1.0, 1 - 1e-6], [1 - 1e-6, 1.0]])
@@ -304,14 +307,16 @@ def test_null_space_threshold_is_relative_to_the_largest_scaled_eigenvalue():
 
 def test_unit_abs_of_blocks_by_hand():
     """[[1, 2], [2, 1]]: eigenvalues 3 (1, 1)/sqrt 2 and -1 (1, -1)/sqrt 2: |B| / 3 =
-    [[2/3, 1/3], [1/3, 2/3]]; diag(-4, 2) -> diag(1, 0.5); a zero block stays zero."""
-    b = Blocks(np.array([[0, 1], [1, 2], [2, 3]]),
+    [[2/3, 1/3], [1/3, 2/3]]; diag(-4, 2) -> diag(1, 0.5); a zero block stays zero;
+    diag(0.5, -0.125), largest |eigenvalue| below 1, -> diag(1, 0.25)."""
+    b = Blocks(np.array([[0, 1], [1, 2], [2, 3], [3, 0]]),
                np.array([[[1.0, 2.0], [2.0, 1.0]], [[-4.0, 0.0], [0.0, 2.0]],
-                         np.zeros((2, 2))]))
+                         np.zeros((2, 2)), [[0.5, 0.0], [0.0, -0.125]]]))
     u = b.unit_abs()
     np.testing.assert_array_equal(u.idx, b.idx)
     np.testing.assert_allclose(u.mat, [[[2 / 3, 1 / 3], [1 / 3, 2 / 3]],
-                                       [[1.0, 0.0], [0.0, 0.5]], np.zeros((2, 2))],
+                                       [[1.0, 0.0], [0.0, 0.5]], np.zeros((2, 2)),
+                                       [[1.0, 0.0], [0.0, 0.25]]],
                                rtol=0, atol=1e-15)
 
 
@@ -372,7 +377,7 @@ def test_reuse_keeps_null_spaces_and_dof_maps_least_recently_used():
     assert r.hits["null_space"] == 4
     r.null_space(P2)
     assert r.misses["null_space"] == 5
-    # a shape differing only in size: a different key ((2, 2) vs (3, 3) zero-padded)
+    # P1 zero-padded to (3, 3): another key (its indptr is longer), its own null space
     P1c = sp.csr_matrix((P1.data, P1.indices, np.r_[P1.indptr, P1.indptr[-1]]), (3, 3))
     assert r.null_space(P1c).shape == (3, 2)
     assert r.misses["null_space"] == 6
@@ -386,10 +391,17 @@ def test_reuse_keeps_null_spaces_and_dof_maps_least_recently_used():
     assert r.dofs(m, m.effects) is d1
     assert (r.hits["dofs"], r.misses["dofs"]) == (1, 1)
     assert d1.n == build_dofs(m).n and d1.labels == build_dofs(m).labels
+    # another model with the same effects: its own DOF map
+    other = load("other.yaml", "cranefe: 1\nplane: xz\nnodes: {S: [0, 0, 4], L: [0, 0, 0]}\n"
+                 "ground: [S]\nmasses: {L: 500}\nsprings:\n  - {type: axial, nodes: [S, L], "
+                 "stiffness: 2.0e5}\n")
+    d_other = r.dofs(other, m.effects)
+    assert d_other.labels == ("node L x", "node L z")
+    assert r.misses["dofs"] == 2
     rigid = m.effects.__class__(**{**m.effects.__dict__, "structure": "rigid"})
     d2 = r.dofs(m, rigid)
     assert d2 is not d1 and d2.members is None
-    assert r.misses["dofs"] == 2
+    assert r.misses["dofs"] == 3
     r.clear()
     assert r.size == 2 and not r.hits and not r.misses
     assert not r._stores["dofs"] and not r._stores["null_space"]
