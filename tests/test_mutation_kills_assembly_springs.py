@@ -156,6 +156,48 @@ def test_spring_rows_without_meshes_one_row_per_rope():
     np.testing.assert_allclose(s.length, [4.0, L_TAG, 3.0, np.nan, np.nan], rtol=1e-14)
 
 
+DRUM = """cranefe: 1
+plane: xz
+nodes: {S: [0, 0, 4], L: [0, 0, 0], D: [2, 0, 4]}
+ground: [S, D]
+masses: {L: 500}
+drums: {hoist: {node: D, radius: 0.25, inertia: 10}}
+ropes: {r: {EA: 1.0e6, path: [hoist, L], psi: 0.1}}
+members: {tie: {type: truss, nodes: [S, L], E: 1.0e11, A: 2.0e-4, rho: 0}}
+effects: {structure: flexible}
+"""
+
+
+def test_spring_rows_of_a_model_without_springs_or_beams():
+    """A drum's rope D -> L and a truss S -> L, no springs, no beams (layout: nodes S, L,
+    D, then the drum: 19 coordinates). The rope's elongation is e . (u_L - u_D) plus
+    radius * drum rotation (hauling in stretches it, model-format.md), e = (-2, 0, -4) /
+    sqrt 20; the truss's -e_t on S, e_t on L with e_t = (0, 0, -1). The empty parts
+    (no springs, no rope elements) leave the index fields integer."""
+    m = load("drum.yaml", DRUM)
+    d = build_dofs(m)
+    assert d.layout.size == 19
+    s = spring_rows(m, d.layout, d.ropes, d.members)
+    e = np.array([-2.0, 0.0, -4.0]) / math.sqrt(20.0)
+    R = np.zeros((2, 19))
+    R[0, 6:9], R[0, 12:15], R[0, 18] = e, -e, 0.25
+    R[1, 0:3], R[1, 6:9] = [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    assert s.R.shape == (2, 19)
+    np.testing.assert_allclose(s.R.toarray(), R, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(s.c, [1.0e6 / math.sqrt(20.0), 1.0e11 * 2.0e-4 / 4],
+                               rtol=1e-14)
+    np.testing.assert_array_equal(s.psi, [0.1, 0.0])
+    assert s.names == ("rope r", "member tie")
+    np.testing.assert_allclose(s.length, [math.sqrt(20.0), 4.0], rtol=1e-14)
+    np.testing.assert_array_equal(s.rope, [0, -1])
+    np.testing.assert_array_equal(s.spring, [-1, -1])
+    np.testing.assert_array_equal(s.member, [-1, 0])
+    for f in (s.rope, s.spring, s.member):
+        assert f.dtype.kind == "i"
+    for f in (s.c, s.psi, s.length):
+        assert f.dtype == float
+
+
 def _beam_part(K_u, rows, c, node):
     """K_u minus the rows' part; it must be the beam post's one element P -> B alone
     (B 4 m below P): EA / l = 2e11 * 1e-3 / 4 = 5e7 N/m on the z translations,
@@ -284,10 +326,15 @@ def test_null_space_threshold_is_relative_to_the_largest_scaled_eigenvalue():
     """Two unit-diagonal coordinates coupled by a correlation rho: the scaled matrix
     [[1, rho], [rho, 1]] has eigenvalues 1 - rho and 1 + rho (about 2, so the threshold
     NULL_TOL * top is about 2 NULL_TOL), eigenvector (1, -1) for 1 - rho: a gap
-    1 - rho = 0.5 NULL_TOL is null, 4 NULL_TOL is not. With the diagonal scaled by
-    (1, 100) (d = 1, 1e4) the null vector is (1, -1e-2) up to scale: the scaling is
-    undone on the way back (s = 1 / sqrt(d))."""
-    for gap, free in ((0.5 * NULL_TOL, True), (4 * NULL_TOL, False)):
+    1 - rho = 1.5 NULL_TOL is null (it would not be against NULL_TOL * 1), 4 NULL_TOL is
+    not. With the diagonal scaled by (1, 100) (d = 1, 1e4) the null vector is
+    (1, -1e-2) up to scale: the scaling is undone on the way back (s = 1 / sqrt(d)).
+    Three unit vectors nearly at 120 degrees (Gram matrix with off-diagonal
+    c = -1/2 + delta): eigenvalues 2 delta along (1, 1, 1) and 3/2 - delta twice, so the
+    threshold is 1.5 NULL_TOL: 2 delta = 1.75 NULL_TOL is not null (it would be against
+    max(top, 2)), 1.25 NULL_TOL is. The margins (12-25 %) are far above the eigenvalues'
+    round-off (1e-16)."""
+    for gap, free in ((1.5 * NULL_TOL, True), (4 * NULL_TOL, False)):
         rho = 1 - gap
         A = np.array([[1.0, rho], [rho, 1.0]])
         D = np.diag([1.0, 100.0])
@@ -296,6 +343,14 @@ def test_null_space_threshold_is_relative_to_the_largest_scaled_eigenvalue():
             _same_columns(N, np.array([[1.0, -0.01]]).T)
         else:
             assert N.shape == (2, 0)
+    for w_min, free in ((1.75 * NULL_TOL, False), (1.25 * NULL_TOL, True)):
+        c = -0.5 + w_min / 2
+        A = np.full((3, 3), c) + (1 - c) * np.eye(3)
+        N = null_space(A)
+        if free:
+            _same_columns(N, np.ones((3, 1)))
+        else:
+            assert N.shape == (3, 0)
     # tiny diagonal entries: the scaled matrix is the identity, nothing is free whatever
     # the size of P
     assert null_space(np.diag([1e-30, 1e-20])).shape == (2, 0)
