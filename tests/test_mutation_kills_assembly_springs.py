@@ -303,9 +303,9 @@ def _same_columns(N, expected):
 
 
 def test_null_space_of_a_pattern_with_contrast_and_an_untouched_coordinate():
-    """P = diag(1, 1e8) couples: a bar between coordinates 0 and 1 of scales 1 and 1e4
-    (P = r r^T with r = (1, -1e4): the motion (1e4, 1) up to scale is free), coordinate 2
-    with stiffness 4 (not free), coordinate 3 untouched (P_33 = 0: free). Null space:
+    """A bar between coordinates 0 and 1 of scales 1 and 1e4 (P = r r^T with
+    r = (1, -1e4), diagonal 1 and 1e8: the motion (1, 1e-4) is free), coordinate 2 with
+    stiffness 4 (not free), coordinate 3 untouched (P_33 = 0: free). Null space:
     (1, 1e-4, 0, 0) and (0, 0, 0, 1), each normalised to a max-norm of 1. The Jacobi
     scaling makes the 1e8 contrast harmless (the threshold is relative to the scaled
     matrix's largest eigenvalue, 2)."""
