@@ -76,4 +76,5 @@ def test_nothing_with_inertia_names_the_file():
     with pytest.raises(ModelError) as err:
         condense(assemble(load("n.yaml", text)))
     assert err.value.file == "n.yaml"
-    assert err.value.message.startswith("nothing that moves has inertia")
+    assert err.value.message == ("nothing that moves has inertia, so there is nothing to "
+                                 "vibrate; give a node a mass (masses:) or a body a mass")

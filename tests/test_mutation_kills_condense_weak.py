@@ -72,3 +72,20 @@ def test_weak_quasi_cyclic_motion_is_reported_with_its_frequency():
     assert text == ("nearly unrestrained (its stiffness is below 1e-10 of its elements'), "
                     f"treated as free; its true frequency is about {float(w):.3g} rad/s")
     assert f"{float(w):.3g}" == "0.000112"
+
+
+def test_a_weak_motion_among_soft_springs_is_still_reported():
+    """The same model with springs of k = 1e-2 N/m (the pattern is scale-free: the same
+    quasi-cyclic motion). Its w^2 = k s^2 / (2 (m1 + m2)) = 1.25e-16 s^-2 (w = 1.118e-8
+    rad/s, the formula checked against mpmath above for k = 1e6: w scales as sqrt(k)) is
+    above the trigger 1e-15 * touched, touched = sum |K_ii| v_i^2 of the M-normalised
+    motion, about 1e-3 s^-2 here: the warning is given. The trigger's floor (1e-300)
+    only guards touched = 0; a floor of 1 s^-2 would hide this warning."""
+    s = assemble(load("weak.yaml", WEAK.replace("stiffness: 1.0e6", "stiffness: 1.0e-2")))
+    c = condense(s)
+    sn = 1e-6 / np.sqrt(1 + 1e-12)
+    w = np.sqrt(1e-2 * sn**2 / (2 * 40))
+    assert c.quasi_cyclic == ("node N1 x",)
+    assert len(c.warnings) == 1
+    assert c.warnings[0].endswith(f"its true frequency is about {w:.3g} rad/s")
+    assert f"{w:.3g}" == "1.12e-08"
