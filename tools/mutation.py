@@ -129,14 +129,16 @@ PRESETS = {
                  ["tests/test_mutation_kills_profiles.py"]),
     "joints": ("cranefe/analysis/operation/joints.py",
                ["tests/test_mutation_kills_joints.py"]),
-    # assembly/: every file of the package (a glob), with the fast model-building tests
+    # assembly/: every file of the package (a glob), with the fast model-building tests;
+    # _springs: every field of the spring rows, the pattern, null space, COO step, Reuse
     "assembly": ("cranefe/assembly/*",
                  ["tests/test_closed_forms.py", "tests/test_kernels.py",
                   "tests/test_members.py", "tests/test_mutation_kills_system.py",
                   "tests/test_mutation_kills_statics.py",
                   "tests/test_mutation_kills_assembly.py",
                   "tests/test_mutation_kills_assembly_beams.py",
-                  "tests/test_timoshenko_geometric.py"]),
+                  "tests/test_timoshenko_geometric.py",
+                  "tests/test_mutation_kills_assembly_springs.py"]),
 }
 
 
