@@ -177,8 +177,9 @@ def test_damped_two_dof_with_jumps_and_breakpoints_against_the_cayley_recurrence
     grid time 0.28 (breakpoints off, on and next to the grid h = 0.02: 0.28 + 1e-8 is a
     step of its own and no sample; those outside (0, T) and at 0 ignored): the states
     at every second step (stride 2, the last one always) against the Cayley recurrence
-    over the same steps (1e-12 relative: round-off), the work of the loads and the dissipated energy summed over the steps
-    with the step's mean velocity (1e-12), the balance (1e-12)."""
+    over the same steps (1e-12 relative: round-off), the work of the loads and the
+    dissipated energy summed over the steps with the step's mean velocity (1e-12), the
+    balance (1e-12)."""
     M = np.diag([3.0, 1.5])
     K = np.array([[900.0, -400.0], [-400.0, 400.0]])
     C = np.array([[4.0, -1.0], [-1.0, 1.0]])
@@ -554,8 +555,8 @@ def test_unbounded_growth_is_an_analysis_error_at_its_step():
 def test_an_active_set_that_keeps_switching_is_kept_with_a_warning():
     """A contact whose two states contradict each other: an indefinite mass matrix
     M = [[1, 2], [2, 1]] (not physical; it only provokes the guard), contact on
-    coordinate 0, weights -10 N on both, dashpots. On, the ground must pull (reaction 2 F1 - F0 =
-    -10 N: lift-off); off, the coordinate falls ((2 F1 - F0) / 3 < 0: landing), at the
+    coordinate 0, weights -10 N on both, dashpots. On, the ground must pull (reaction
+    2 F1 - F0 = -10 N: lift-off); off, the coordinate falls ((2 F1 - F0) / 3 < 0: landing), at the
     same instant. After CHATTER = 25 switches (lift-off first: 13 lift-offs, 12
     landings) the step is taken as it is, off the ground: x after the first step is the
     free system's Cayley step (1e-12 relative); one warning per step naming its time."""
