@@ -556,10 +556,11 @@ def test_an_active_set_that_keeps_switching_is_kept_with_a_warning():
     """A contact whose two states contradict each other: an indefinite mass matrix
     M = [[1, 2], [2, 1]] (not physical; it only provokes the guard), contact on
     coordinate 0, weights -10 N on both, dashpots. On, the ground must pull (reaction
-    2 F1 - F0 = -10 N: lift-off); off, the coordinate falls ((2 F1 - F0) / 3 < 0: landing), at the
-    same instant. After CHATTER = 25 switches (lift-off first: 13 lift-offs, 12
-    landings) the step is taken as it is, off the ground: x after the first step is the
-    free system's Cayley step (1e-12 relative); one warning per step naming its time."""
+    2 F1 - F0 = -10 N: lift-off); off, the coordinate falls ((2 F1 - F0) / 3 < 0:
+    landing), at the same instant. After CHATTER = 25 switches (lift-off first: 13
+    lift-offs, 12 landings) the step is taken as it is, off the ground: x after the first
+    step is the free system's Cayley step (1e-12 relative); one warning per step naming
+    its time; every step starts such a series again (the count is reset by a step)."""
     M, K, F = np.array([[1.0, 2.0], [2.0, 1.0]]), np.diag([100.0, 100.0]), np.array(
         [-10.0, -10.0])
     C = np.diag([0.5, 0.3])
