@@ -89,16 +89,11 @@ PRESETS = {
     "damping_exact": ("cranefe/analysis/damping/exact.py",
                       ["tests/test_values.py", "tests/test_damping.py",
                        "tests/test_mutation_kills_exact.py"]),
-    # newmark: every transient test steps through it; the fast ones that cover its
-    # branches (linear steps, slack/taut events, lift-off, motors' Newton loop)
+    # newmark: the Stepper on hand-built Equations of 1-2 coordinates (no model, no
+    # statics: ~1 s a mutant; a whole run of the 859 in ~16 min) + the Cayley-map case
     "newmark": ("cranefe/analysis/transient/newmark.py",
-                ["tests/test_mutation_kills_newmark.py",
-                 "tests/test_mutation_kills_newmark_landing.py",
-                 "tests/test_transient.py::test_step_torque_against_the_closed_form",
-                 "tests/test_transient.py::test_lift_off_at_constant_hauling_speed",
-                 "tests/test_transient.py::test_slack_rope_retensioned_against_the_closed_form",
-                 "tests/test_transient.py::test_slack_rope_events_keep_the_energy",
-                 "tests/test_transient.py::test_motor_runs_up_to_its_steady_speed"]),
+                ["tests/test_mutation_kills_newmark_stepper.py",
+                 "tests/test_mutation_kills_newmark.py"]),
     # luffing: tests/test_luffing.py runs whole analyses (up to 7 s each): the J(alpha)
     # value test and the kill test reach every quantity of energy.py in a few seconds
     "luffing_energy": ("cranefe/analysis/luffing/energy.py",
