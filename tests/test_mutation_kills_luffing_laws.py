@@ -157,3 +157,13 @@ def test_rest_to_rest_law_in_the_boom_angle(which, c, a0, ak):
     assert law.info == {"tau_c_s": 2.0, "eps": 0.2}
     a1, _, _ = law.evaluate(0.5)                # a scalar tau: one value
     assert a1.shape == (1,) and a1[0] == pytest.approx(a_ref[5], abs=1e-12)
+
+
+def test_rest_to_rest_law_uses_the_complete_inertia_by_default():
+    """Without `which`, the complete J (sqrt(J) = 1 + alpha here), not the own-axis Jp."""
+    law = rest_to_rest_law(_Proxy(), 0.3, 1.1, 2.0, 10.0)
+    ref = rest_to_rest_law(_Proxy(), 0.3, 1.1, 2.0, 10.0, "complete")
+    own = rest_to_rest_law(_Proxy(), 0.3, 1.1, 2.0, 10.0, "own")
+    tau = np.linspace(0, 1, 11)
+    np.testing.assert_array_equal(law.evaluate(tau)[0], ref.evaluate(tau)[0])
+    assert np.abs(law.evaluate(tau)[0] - own.evaluate(tau)[0]).max() > 1e-3
