@@ -106,6 +106,12 @@ PRESETS = {
     # per session); the J(alpha) tests recompute their 30-digit references per mutant
     "luffing_kinematics": ("cranefe/analysis/luffing/kinematics.py",
                            ["tests/test_mutation_kills_luffing_kinematics.py"]),
+    # luffing laws and sway: the laws by hand and in mpmath; the sway against a hand
+    # integration of the pendulums and a 30-digit quadrature of the residual
+    "luffing_laws": ("cranefe/analysis/luffing/laws.py",
+                     ["tests/test_mutation_kills_luffing_laws.py"]),
+    "luffing_sway": ("cranefe/analysis/luffing/sway.py",
+                     ["tests/test_mutation_kills_luffing_sway.py"]),
     "motion": ("cranefe/elements/motion.py",
                ["tests/test_mutation_kills_motion.py"]),
     # loads/standard.py: the EN 13001-2 factors, pure functions
