@@ -242,7 +242,8 @@ def apply(model, r, raw_drives, op, motion, check_travel):
             continue
         ps = _moves(spec["profile"])
         e = f"{d.entry}.profile" + ("[{}]" if isinstance(spec["profile"], list) else "")
-        ms = [motion(r, p, e.format(i), d.target == "hinge")
+        radius = model.drums[d.index].radius if d.target == "drum" else None
+        ms = [motion(r, p, e.format(i), d.target, radius)    # as scene._moves parses it
               for i, p in enumerate(ps)]
         moves[k] = ms
         for i, p in enumerate(ps):
