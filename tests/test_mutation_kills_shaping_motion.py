@@ -111,6 +111,14 @@ def test_merge_keeps_times_closer_than_its_tolerance_of_a_long_move_only():
     t = np.array([0.0, 0.5, 0.5 + 1e-10, 1.0])
     p = mo._merge(t, np.array([1.0, -1.0, -1.0, 1.0]))
     assert len(p.times) == 4
+    # the scale is the LAST time (not the second, nor the one before the last) and at
+    # least 1 s (not 2 s): the count of steps tells
+    t = np.array([0.0, 0.001, 500.0, 500.0 + 1e-10, 1000.0])
+    assert len(mo._merge(t, np.ones(5)).times) == 4
+    t = np.array([0.0, 1e-10, 1.0, 1000.0])
+    assert len(mo._merge(t, np.ones(4)).times) == 3
+    t = np.array([0.0, 0.5, 0.5 + 1.5e-12, 1.0])
+    assert len(mo._merge(t, np.ones(4)).times) == 4
     # unsorted input, the class kept
     p = mo._merge(np.array([2.0, 0.0, 1.0]), np.array([3.0, 1.0, 2.0]), mo.JerkSteps)
     assert type(p) is mo.JerkSteps
@@ -177,13 +185,15 @@ def test_shape_by_hand():
 def test_bad_moves_are_refused():
     for args in [(0.0, 1.0, 1.0), (1.0, 0.0, 1.0), (1.0, 1.0, 0.0), (-1.0, 1.0, 1.0),
                  (1.0, -1.0, 1.0), (1.0, 1.0, -1.0)]:
-        with pytest.raises(ModelError, match="positive distance"):
+        with pytest.raises(ModelError, match=r"^a trapezoidal move needs positive "
+                           r"distance, v_max and a_max \(got "):
             mo.trapezoid(*args)
     for j in (0.0, -1.0):
         with pytest.raises(ModelError, match="jerk"):
             mo.s_curve(1.0, 1.0, 1.0, j)
     # a motion that does not end at constant speed
-    with pytest.raises(ModelError, match="constant speed"):
+    with pytest.raises(ModelError, match=r"^the motion does not end at constant speed "
+                       r"\(its acceleration is not zero after the last step\)$"):
         mo.residual_amplitude(mo.AccelSteps(np.array([0.0, 1.0]), np.array([1.0, -0.5])),
                               1.0)
     with pytest.raises(ModelError, match="constant speed"):
@@ -193,6 +203,37 @@ def test_bad_moves_are_refused():
     with pytest.raises(ModelError, match="constant speed"):
         mo.residual_amplitude(mo.AccelSteps(np.array([0.0, 0.5]),
                                             np.array([1.0, -1.0 + 1e-6])), 1.0)
+
+
+
+
+def test_end_check_threshold_scales_with_the_jumps_and_the_duration():
+    """Refused when |a| after the end exceeds 1e-9 max|jump| max(T, 1)^(order + 1):
+    a leftover of 1e-8 of the jumps passes on a 100 s move and 1e-6 does not; on a 1 s
+    move 1.5e-9 is refused; a jerk profile of 100 s allows 1e-6."""
+    def acc(end, left, cls=mo.AccelSteps):
+        return cls(np.array([0.0, end]), np.array([1.0, -1.0 + left]))
+    assert mo.residual_amplitude(acc(100.0, 1e-8), 1.0) > 0
+    for p in (acc(100.0, 1e-6), acc(1.0, 1.5e-9), acc(0.5, 1.5e-9)):
+        with pytest.raises(ModelError, match="constant speed"):
+            mo.residual_amplitude(p, 1.0)
+    # jerk steps [1, -2 + e, 1 - e] at (0, T/2, T): no jerk after the end, a leftover
+    # acceleration e T / 2: 1e-6 on T = 100 s (threshold 1e-9 x 2 x 100^2), 5e-9 on 1 s
+    # (threshold 2e-9)
+    e = 2e-8
+    p = mo.JerkSteps(np.array([0.0, 50.0, 100.0]), np.array([1.0, -2.0 + e, 1.0 - e]))
+    assert mo.residual_amplitude(p, 1.0) > 0
+    e = 1e-8
+    p = mo.JerkSteps(np.array([0.0, 0.5, 1.0]), np.array([1.0, -2.0 + e, 1.0 - e]))
+    with pytest.raises(ModelError, match="constant speed"):
+        mo.residual_amplitude(p, 1.0)
+    # the acceleration after a jerk profile is linear, a(t) = 3 - t here: zero 2 s
+    # after the end, 1 one second after: refused
+    with pytest.raises(ModelError, match="constant speed"):
+        mo.residual_amplitude(mo.JerkSteps(np.array([0.0, 1.0]), np.array([2.0, -3.0])),
+                              1.0)
+    # no motion at all leaves no sway
+    assert mo.residual_amplitude(mo.AccelSteps(np.array([0.0]), np.array([0.0])), 1.0) == 0
 
 
 # ------------------------------------------------------------------ residual sway
@@ -322,3 +363,10 @@ def test_nonlinear_residual_of_an_s_curve():
     p = mo.s_curve(6.0, 2.0, 1.0, 2.0)
     got = mo.nonlinear_residual_sway(p, 1.5)
     assert got == pytest.approx(_nonlinear_ref("s", 1.5, G), rel=1e-6)
+
+
+def test_nonlinear_residual_over_the_top_is_pi():
+    """80 m/s^2 for 0.3 s then braking as hard on a 1 m pendulum: the swing passes over
+    the top (cos theta - l theta'^2 / (2 g) < -1), reported as pi."""
+    p = mo.AccelSteps(np.array([0.0, 0.3, 0.6]), np.array([80.0, -160.0, 80.0]))
+    assert mo.nonlinear_residual_sway(p, 1.0) == np.pi
