@@ -121,6 +121,11 @@ def test_own_gravity_and_the_number_of_candidates():
           g=4 * np.pi**2)
     r = sf.min_time_swing_free(3.0, 10.0, 1.0, L1, n_max=1)
     assert r["family"] == "acceleration: t_a = 1 T" and r["time_s"] == pytest.approx(4.0)
+    # the search stops at n = 200 by default: D = 201 at v_max 1 cannot coast 201 T
+    r = sf.min_time_swing_free(201.0, 1.0, 100.0, L1)
+    assert r["family"] == "acceleration: t_a = 1 T"
+    assert sf.min_time_swing_free(201.0, 1.0, 100.0, L1, n_max=201)["family"] == \
+        "coast: t_a + t_c = 201 T"
     # a long move needs a large n: D = 150, v_max = 1, a_max = 100: s = 150T, n = 150
     r = sf.min_time_swing_free(150.0, 1.0, 100.0, L1)
     assert r["family"] == "coast: t_a + t_c = 150 T"
@@ -131,15 +136,42 @@ def test_own_gravity_and_the_number_of_candidates():
                                   (-1, 1, 1, 1), (1, -1, 1, 1), (1, 1, -1, 1),
                                   (1, 1, 1, -1)])
 def test_min_time_refuses_bad_input(args):
-    with pytest.raises(ModelError, match="swing-free move needs positive"):
+    with pytest.raises(ModelError, match=r"^a swing-free move needs positive distance, "
+                       r"v_max, a_max and length \(got "):
         sf.min_time_swing_free(*args)
 
 
 @pytest.mark.parametrize("args", [(0, 1, 1), (1, 0, 1), (1, 1, 0), (-1, 1, 1),
                                   (1, -1, 1), (1, 1, -1)])
 def test_energy_optimal_refuses_bad_input(args):
-    with pytest.raises(ModelError, match="energy-optimal move needs positive"):
+    with pytest.raises(ModelError, match=r"^an energy-optimal move needs positive "
+                       r"distance, duration and length \(got "):
         sf.energy_optimal_swing_free(*args)
+
+
+def test_energy_optimal_accepts_small_positive_input():
+    """Distance, duration and length below 1 (0.5 m in 0.8 s on 0.5 m): at rest at D."""
+    r = sf.energy_optimal_swing_free(0.5, 0.8, 0.5)
+    assert float(r["position"](0.8)) == pytest.approx(0.5, rel=1e-9)
+    assert abs(float(r["speed"](0.8))) < 1e-9
+
+
+def test_energy_optimal_long_move_keeps_its_constraints():
+    """T = 40 s on a 1 m pendulum (w T = 125 rad: the Gram integrals of cos^2(w t) need
+    more than 64 Gauss-Legendre nodes, the module takes 4 w T + 64): at rest at D and
+    no sway, checked by a 300-node Gauss-Legendre rule of the returned acceleration
+    (converged to round-off up to w T ~ 200: 1e-13 against the closed-form integrals)."""
+    D, T, length = 5.0, 40.0, 1.0
+    r = sf.energy_optimal_swing_free(D, T, length)
+    w = np.sqrt(G / length)
+    x, wq = np.polynomial.legendre.leggauss(300)
+    t, wq = 0.5 * T * (x + 1), 0.5 * T * wq
+    a = r["acceleration"](t)
+    scale = np.sum(wq * np.abs(a))
+    assert abs(np.sum(wq * a)) < 1e-9 * scale                       # speed back to 0
+    assert np.sum(wq * (T - t) * a) == pytest.approx(D, rel=1e-9)    # the distance
+    for f in (np.cos, np.sin):
+        assert abs(np.sum(wq * a * f(w * t))) < 1e-9 * scale          # no sway
 
 
 # ------------------------------------------------------------------ energy optimal
