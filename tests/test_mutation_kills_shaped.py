@@ -101,16 +101,20 @@ def test_parse_shaper_values():
     ({}, E, "missing required key 'type'"),
     ({"type": "ZV", "speed": 3}, f"{E}.speed", "unknown key"),
     ({"type": "ZX"}, f"{E}.type", "'ZX' is not one of ZV, ZVD, ZVDD, EI"),
-    ({"type": "ZV", "frequency": []}, f"{E}.frequency", "an empty list"),
+    ({"type": "ZV", "frequency": []}, f"{E}.frequency", "=an empty list; give auto, a "
+     "frequency in Hz or a list of them (one per mode)"),
     ({"type": "ZV", "frequency": -1}, f"{E}.frequency", "positive"),
     ({"type": "ZV", "frequency": [0.2, 0]}, f"{E}.frequency", "positive"),
-    ({"type": "ZV", "frequency": 0.2, "modes": [1]}, f"{E}.modes", "frequency: auto"),
+    ({"type": "ZV", "frequency": 0.2, "modes": [1]}, f"{E}.modes", "=modes selects among "
+     "the crane's own modes: it goes with frequency: auto"),
     ({"type": "ZV", "damping": 1.0}, f"{E}.damping", "1: a damping ratio below 1"),
     ({"type": "ZV", "damping": -0.1}, f"{E}.damping", "negative"),
-    ({"type": "ZV", "V": 0.1}, f"{E}.V", "belongs to the EI"),
+    ({"type": "ZV", "V": 0.1}, f"{E}.V", "=V (the tolerated residual) belongs to the EI "
+     "shaper"),
     ({"type": "EI", "V": 1.0}, f"{E}.V", "1: the tolerated residual is a fraction below 1"),
     ({"type": "EI", "V": 0}, f"{E}.V", "positive"),
-    ({"type": "ZV", "modes": [1.5]}, f"{E}.modes", "whole numbers from 1"),
+    ({"type": "ZV", "modes": [1.5]}, f"{E}.modes", "=mode numbers are whole numbers from "
+     "1 (the lowest)"),
     ({"type": "ZV", "modes": [1, 0]}, f"{E}.modes[1]", "positive"),
     ({"type": "ZV", "modes": []}, f"{E}.modes", "at least 1"),
     ({"type": "ZV", "modes": 2}, f"{E}.modes", "must be a list"),
@@ -119,7 +123,10 @@ def test_parse_shaper_errors(spec, entry, words):
     with pytest.raises(ModelError) as e:
         sp.parse_shaper(_Reader("f.yaml"), spec, E)
     assert e.value.entry == entry and e.value.file == "f.yaml"
-    assert words in e.value.message
+    if words.startswith("="):                    # the whole message
+        assert e.value.message == words[1:]
+    else:
+        assert words in e.value.message
 
 
 # ------------------------------------------------------------------ trains, shaped moves
@@ -227,11 +234,50 @@ def test_auto_of_a_drum_takes_the_hoisting_mode(tmp_path):
     assert s.times[1] == pytest.approx(np.pi / W_HOIST, rel=1e-9)
 
 
+def test_auto_of_the_tower_crane_hoist_takes_only_the_lowest_vertical_mode(tmp_path):
+    """The tower crane has two mostly vertical modes (16.2 and 382 rad/s): a drum's auto
+    takes the lowest only; modes: [2] is refused naming the one hoisting mode."""
+    def hoist(shaper):
+        return ("    hoist: {drum: hoist, profile: {type: trapezoid, distance: 1, v_max: 1, "
+                f"a_max: 1, shaper: {shaper}}}}}\n")
+    m = scene(tmp_path, TOWER, hoist("{type: ZV}"))
+    op = parse(m)
+    w, hor, _, _ = sp.crane_modes(m, op, 0.0)
+    vert = w[hor < 0.5]
+    assert len(vert) == 2
+    (_, s, ws), = drive(op, "hoist").motion.shapers
+    assert ws == (pytest.approx(vert[0], rel=1e-12),) and s.name == "ZV"
+    with pytest.raises(ModelError) as e:
+        parse(scene(tmp_path, TOWER, hoist("{type: ZV, modes: [2]}")))
+    assert e.value.message == (f"mode 2: the crane has 1 hoisting (vertical) mode(s) at the "
+                               f"start of this move ({vert[0] / (2 * np.pi):.4g} Hz); number "
+                               "them from 1")
+
+
+def test_static_state_of_a_moving_crane_is_at_rest(tmp_path):
+    """crane_modes at times the trolley accelerates (0.5 s), cruises (5 s) and after it
+    has travelled 10 m (15 s): the static state of that geometry at rest (no inertial
+    load, the pendulum hanging straight below the trolley 10 m away from where the
+    model has it): always sqrt(g / 6 m)."""
+    drives = ("    trolley: {slider: trolley_travel, profile: [{type: trapezoid, distance: 10, "
+              "v_max: 1, a_max: 0.5}, {type: trapezoid, distance: 1, v_max: 0.5, a_max: 0.5, "
+              "start: 15, shaper: {type: ZV}}]}\n")
+    m = scene(tmp_path, OVERHEAD, drives)
+    op = parse(m)
+    for t in (0.5, 5.0, 15.0):
+        w, hor, _, _ = sp.crane_modes(m, op, t)
+        assert np.allclose(w, [W_OH, W_HOIST], rtol=1e-9), t
+    (i, _, ws), = drive(op, "trolley").motion.shapers
+    assert i == 1 and ws == (pytest.approx(W_OH, rel=1e-9),)
+
+
 def test_auto_refused_without_sway(tmp_path):
     m = scene(tmp_path, OVERHEAD, trolley(), extra="effects: {sway: false}\n")
     with pytest.raises(ModelError) as e:
         parse(m)
-    assert "effects sway: false" in e.value.message
+    assert e.value.message == ("frequency: auto shapes for the pendulum modes, and with "
+                               "effects sway: false the loads do not swing; give the "
+                               "frequency in Hz or turn sway on")
     assert e.value.entry == "analysis.drives.trolley.profile.shaper"
     assert e.value.file == m.scene_file
     # given in Hz it needs no modes
@@ -298,9 +344,38 @@ def test_a_shaped_move_that_runs_into_the_next_is_refused(tmp_path):
     assert e.value.entry == "analysis.drives.trolley.profile[1].start"
     assert e.value.message == ("starts at 6 s, before the previous (shaped) move ends (8 s: "
                                "the shaper adds its duration)")
+    # the second move's own start counts (not its second breakpoint, 8.5 s), against
+    # the shaped first's end (not its breakpoint before, 7 s), to 1e-12 s
+    with pytest.raises(ModelError, match=r"starts at 7.5 s, before"):
+        parse(scene(tmp_path, OVERHEAD, two(7.5)))
+    with pytest.raises(ModelError, match=r"starts at 7.99 s, before"):
+        parse(scene(tmp_path, OVERHEAD, two(7.99)))
     mo = drive(parse(scene(tmp_path, OVERHEAD, two(8))), "trolley").motion
     # the ZV copies of the 3 s move (at 0 and 5 s) leave a rest from 3 to 5 s
     assert mo.moves() == [(0.0, 3.0), (5.0, 11.0)]
+
+
+def test_a_bad_shaper_in_a_list_names_its_move(tmp_path):
+    drives = ("    trolley:\n      slider: trolley_travel\n      profile:\n"
+              "        - {type: trapezoid, distance: 1, v_max: 0.5, a_max: 0.5}\n"
+              "        - {type: trapezoid, distance: -1, v_max: 0.5, a_max: 0.5, start: 6, "
+              "shaper: {type: ZX}}\n")
+    with pytest.raises(ModelError) as e:
+        parse(scene(tmp_path, OVERHEAD, drives))
+    assert e.value.entry == "analysis.drives.trolley.profile[1].shaper.type"
+
+
+def test_drives_after_an_unshaped_kind_are_shaped(tmp_path):
+    """A torque drive listed first does not stop the pass: the trolley after it is
+    shaped, and keeps its motion's kind."""
+    drives = ("    hoist: {drum: hoist, torque: 0}\n"
+              + trolley(shaper="{type: ZV, frequency: 0.25}"))
+    op = parse(scene(tmp_path, OVERHEAD, drives))
+    mo = drive(op, "trolley").motion
+    assert isinstance(mo, sp.ShapedMotion) and mo.t[-1] == pytest.approx(5.0, abs=TOL)
+    plain = drive(parse(scene(tmp_path, OVERHEAD, drives.replace(
+        ", shaper: {type: ZV, frequency: 0.25}", ""))), "trolley").motion
+    assert mo.kind == plain.kind == "trapezoid"
 
 
 def test_speed_tables(tmp_path):
