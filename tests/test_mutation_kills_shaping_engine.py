@@ -112,6 +112,9 @@ def test_shaped_model(tmp_path):
     # -> 15 s
     assert out.analysis["duration"] == pytest.approx(32.0, abs=TOL)
     assert drive(out).motion.t[-1] == pytest.approx(15.0, abs=TOL)
+    # a shaper that adds less than a second: ZV at 1 Hz, 0.5 s
+    out = en.shaped_model(m, "trolley", {"type": "ZV", "frequency": 1.0})
+    assert out.analysis["duration"] == pytest.approx(30.5, abs=TOL)
     out = en.shaped_model(m, "trolley", None)
     assert all("shaper" not in p for p in out.analysis["drives"]["trolley"]["profile"])
     assert out.analysis["duration"] == 30
