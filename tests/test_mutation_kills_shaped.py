@@ -432,3 +432,26 @@ def test_shaped_moves_take_the_units_of_their_drive(tmp_path):
     mo = drive(slew, "slew").motion
     assert mo(20.0)[0] == pytest.approx(np.pi / 6, rel=1e-12)
     assert np.allclose(mo.t, [0, 2, 3, 5, 7, 8, 10], rtol=0, atol=TOL)
+
+
+def test_auto_with_a_free_joint(tmp_path):
+    """Regression (found by this mutation work): crane_modes set q[:nx] (point masses,
+    then the joint coordinates) from the point masses alone and took E phi over all nx
+    coordinates, so frequency: auto on a scene with a free joint (here the luffing
+    crane's boom, free on its hinge, held by its luffing rope) or an elastic structure
+    raised a ValueError with a traceback. The hook's pendulum mode is horizontal, the
+    hoist drum's auto takes the lowest mostly vertical mode."""
+    path = tmp_path / "free.yaml"
+    path.write_text(f"cranefe: 1\nscene: free boom\nmodel: {ROOT / 'luffing_crane.yaml'}\n"
+                    "analysis:\n  type: operation\n  duration: 40\n  drives:\n"
+                    "    boom: {hinge: luffing, free: true}\n"
+                    "    hoist: {drum: hoist, profile: {type: trapezoid, distance: 5, "
+                    "v_max: 1, a_max: 1, shaper: {type: ZV}}}\n")
+    m = load(path)
+    op = parse(m)
+    w, hor, phi, mech = sp.crane_modes(m, op, 0.0)
+    assert mech.nJ == 1 and phi.shape == (mech.nx, mech.nx) and len(w) == mech.nx
+    assert np.all(np.isfinite(w)) and np.all((hor > -1e-9) & (hor < 1 + 1e-9))
+    assert np.any(hor > 0.999)                                  # the hook's swing
+    (_, s, ws), = drive(op, "hoist").motion.shapers
+    assert ws == (pytest.approx(w[hor < 0.5][0], rel=1e-12),)
