@@ -145,7 +145,7 @@ def crane_modes(model, op, t, newton_tol=1e-10):
             root = mech.root[k]
             if root >= 0:
                 P[k] += H @ (X[root] - model.coords[root])
-        q[:nx] = mech.E.T @ P.ravel()
+        q[:mech.nc] = mech.E.T @ P.ravel()          # the point masses (then joints, structure)
     taut = np.ones(len(mech.ropes), bool)
     zero = np.zeros(mech.n)
     scale = model.length_scale
@@ -165,7 +165,7 @@ def crane_modes(model, op, t, newton_tol=1e-10):
     K = 0.5 * (ev.K[:nx, :nx] + ev.K[:nx, :nx].T)
     M = mech.mass_matrix(ev)[:nx, :nx]          # with the joint coordinates' block
     w2, phi = sl.eigh(K, 0.5 * (M + M.T))
-    u = (mech.E @ phi).reshape(nf, 3, nx)                  # node displacements per mode
+    u = (mech.E @ phi[:mech.nc]).reshape(nf, 3, nx)        # node displacements per mode
     m = mech.free_mass[:, None, None]
     vert = np.einsum("i,kim->km", mech.up, u)              # (nf, nx) vertical part
     total = np.einsum("kim,kim->m", m * u, u)
@@ -242,7 +242,8 @@ def apply(model, r, raw_drives, op, motion, check_travel):
             continue
         ps = _moves(spec["profile"])
         e = f"{d.entry}.profile" + ("[{}]" if isinstance(spec["profile"], list) else "")
-        ms = [motion(r, p, e.format(i), d.target == "hinge")
+        radius = model.drums[d.index].radius if d.target == "drum" else None
+        ms = [motion(r, p, e.format(i), d.target, radius)    # as scene._moves parses it
               for i, p in enumerate(ps)]
         moves[k] = ms
         for i, p in enumerate(ps):
