@@ -157,10 +157,9 @@ def test_energy_optimal_accepts_small_positive_input():
 
 
 def test_energy_optimal_long_move_keeps_its_constraints():
-    """T = 40 s on a 1 m pendulum (w T = 125 rad: the Gram integrals of cos^2(w t) need
-    more than 64 Gauss-Legendre nodes, the module takes 4 w T + 64): at rest at D and
-    no sway, checked by a 300-node Gauss-Legendre rule of the returned acceleration
-    (converged to round-off up to w T ~ 200: 1e-13 against the closed-form integrals)."""
+    """T = 40 s on a 1 m pendulum (w T = 125 rad): at rest at D and no sway, checked by a
+    300-node Gauss-Legendre rule of the returned acceleration (converged to round-off up
+    to w T ~ 200: 1e-13 against the closed-form integrals)."""
     D, T, length = 5.0, 40.0, 1.0
     r = sf.energy_optimal_swing_free(D, T, length)
     w = np.sqrt(G / length)
@@ -256,3 +255,25 @@ def test_swing_free_energy_optimal_move(length, g):
     assert np.allclose(tab["values"], r["speed"](sg), rtol=0, atol=TOL)
     assert np.allclose(tab["positions"], r["position"](sg), rtol=0, atol=TOL)
     assert np.allclose(r["position"](ts[1:3]), s[1:3], rtol=0, atol=1e-9 * D)
+
+
+@pytest.mark.parametrize("w, T", [(9.9, 20.0), (1.5, 8.0), (0.01, 5.0), (0.3, 0.2)])
+def test_gram_matrix_against_quadrature(w, T):
+    """The closed-form Gram matrix of (1, T - t, cos w t, sin w t) against mpmath's
+    quadrature at 20 digits (a piece per ~6 rad of w t): a 0.1 m sling over 20 s (w T =
+    198, where a Gauss rule of too few nodes went wrong), a usual move, and two short
+    ones (w T = 0.05 and 0.06, where 1 - cos and x - sin x lose every digit unless
+    written without cancellation): each entry to 1e-12 of itself (sin(198) in double
+    precision carries 1e-16 absolute, 2e-13 of the smallest entry there)."""
+    G = sf._gram(w, T)
+    ref = np.zeros((4, 4))
+    with mp.workdps(20):
+        wm, Tm = mp.mpf(w), mp.mpf(T)
+        basis = [lambda t: 1, lambda t: Tm - t, lambda t: mp.cos(wm * t),
+                 lambda t: mp.sin(wm * t)]
+        pieces = mp.linspace(0, Tm, int(w * T / 6) + 2)
+        for i in range(4):
+            for j in range(i, 4):
+                ref[i, j] = ref[j, i] = float(
+                    mp.quad(lambda t: basis[i](t) * basis[j](t), pieces))
+    np.testing.assert_allclose(G, ref, rtol=1e-12, atol=0)
