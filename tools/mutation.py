@@ -140,6 +140,25 @@ PRESETS = {
                   "tests/test_mutation_kills_assembly_beams.py",
                   "tests/test_timoshenko_geometric.py",
                   "tests/test_mutation_kills_assembly_springs.py"]),
+    # shaping/motion.py: the acceleration/jerk-step profiles, their shaping and the
+    # residual sway in closed form; test_shaping.py (1.5 s) and the kill tests (~6 s)
+    "shaping_motion": ("cranefe/analysis/shaping/motion.py",
+                       ["tests/test_shaping.py",
+                        "tests/test_mutation_kills_shaping_motion.py"]),
+    # shaping/swingfree.py: the minimum-time swing-free trapezoid and the energy-optimal
+    # move; test_shaping.py (1.5 s) and the kill tests (~6-10 s: a 25-digit Gram system)
+    "swingfree": ("cranefe/analysis/shaping/swingfree.py",
+                  ["tests/test_shaping.py", "tests/test_mutation_kills_swingfree.py"]),
+    # operation/shaped.py: shaped moves of scenes, frequency: auto from the crane's
+    # modes; the kill tests parse scenes only (~10 s); tests/test_shaping_engine.py runs
+    # the engine (30 s idle) and is left out
+    "shaped": ("cranefe/analysis/operation/shaped.py",
+               ["tests/test_mutation_kills_shaped.py"]),
+    # shaping/engine.py: the scene edits, the summary and compare's document; the engine
+    # itself is replaced by a stand-in in the kill tests (tests/test_shaping_engine.py,
+    # which runs it, takes about 30 s idle and is left out)
+    "shaping_engine": ("cranefe/analysis/shaping/engine.py",
+                       ["tests/test_mutation_kills_shaping_engine.py"]),
 }
 
 
