@@ -14,7 +14,7 @@ References, each independent of the code's jets and of its `pair`/Theta identity
   horizontal motions: M = [[J, -C], [-C, m_t]], Kane's (Lagrange's) inertia terms
   F_phi = -J'(r) r' phi' = -2 S r' phi' (S = sum_trolley m rho_x), F_r = S phi'^2;
   K = -dF/du, C = -dF/du', dM/dr = [[2 S', 0], [0, 0]] with S' = m_t;
-- a five-body chain (a prescribed gantry slider, a tilted slewing hinge coordinate with
+- a six-body chain (a prescribed gantry slider, a tilted slewing hinge coordinate with
   sign -1 and scale rho = 2, a trolley slider coordinate with rho = 0.5 on it, a
   prescribed hook hinge below, a body fixed to the hook) and a chain under a linkage's
   motion: the maps composed in plain numpy from the joints' closed forms (Rodrigues'
@@ -94,6 +94,7 @@ def test_side_motion_by_hand():
         (3.0 - 2e-12, False, (2.0, 1.8, -0.4)),    # within 1e-12 |t|: at the breakpoint
         (3.0 + 2e-12, True, (2.0, 1.8, 1.1)),
         (3.0 - 1e-9, False, (2.0, 1.8, 1.1)),      # beyond: the segment it is in
+        (1.0 - 1.5e-12, False, (0.2, 0.2, 0.0)),   # 1.5e-12 before t0 = 1: not at it
         (0.5, False, (0.1, 0.2, 0.0)),             # before the profile: v0 t
         (1.0, True, (0.2, 0.2, 0.0)),              # its start from the left: the rest
         (1.0, False, (0.2, 0.2, 0.5)),
@@ -111,6 +112,16 @@ def test_side_motion_by_hand():
 def test_side_motion_is_left_by_default_false():
     m = _profile()
     assert side_motion(m, 3.0)[2] == -0.4
+
+
+def test_side_motion_holds_the_speed_after_the_last_breakpoint():
+    """t[-1] ends the last segment (profiles.Motion): after it the speed is constant,
+    whatever acceleration and jerk the arrays hold there (5 and 7 here)."""
+    m = Motion(np.array([0.0, 1.0]), np.array([0.0, 1.0]), np.array([1.0, 1.0]),
+               np.array([0.0, 5.0]), np.array([0.0, 7.0]))
+    for t, left, ref in ((1.0, False, (1.0, 1.0, 0.0)), (2.5, False, (2.5, 1.0, 0.0)),
+                         (2.5, True, (2.5, 1.0, 0.0)), (0.5, False, (0.5, 1.0, 0.0))):
+        assert np.allclose(side_motion(m, t, left), ref, rtol=0, atol=1e-15), (t, left)
 
 
 # --------------------------------------------------- slewing jib + trolley, by hand
@@ -203,6 +214,12 @@ def test_slewing_jib_with_a_prescribed_trolley_against_a_hand_lagrangian():
         assert close(st.F, [-2 * S * rv * w + C * ra], 1e-12, scale=J)
         assert np.isclose(ch.power(st, np.array([a])), rv * (-S * w * w - C * a + mt * ra),
                           rtol=1e-12)
+    # by default from the right (the segment after): state and motions
+    st = ch.state(3.0, np.array([phi]), np.array([w]))
+    assert close(st.F, [-2 * S * rv * w + C * -0.4], 1e-12, scale=J)
+    H = ch.motions(3.0, np.array([phi]))
+    x_tt = ch.jets.derivatives(H[1])[1][1, 1].reshape(3, 4)[:, 3]   # r'' Rz(phi) e_x
+    assert close(x_tt, -0.4 * np.array([np.cos(phi), np.sin(phi), 0.0]), 1e-14)
 
 
 # ----------------------------------- a general chain, by Cauchy's integral formula
@@ -262,7 +279,7 @@ def _taylor(maps_of, z0):
 
 
 def _spec():
-    """The five-body chain (module docstring): joints, mass points, nodes."""
+    """The six-body chain (module docstring): joints, mass points, nodes."""
     return dict(
         gantry=dict(axis=_unit([0.6, 0.8, 0.0]), sign=1.0),
         jib=dict(axis=_unit([0.1, -0.2, 1.0]), point=np.array([1.0, -0.5, 0.3]),
@@ -274,7 +291,8 @@ def _spec():
                  np.array([3.0, 2.0, 1.5])),
              2: (np.array([[6.0, 0.3, 2.2], [6.5, 0.8, 1.8]]), np.array([1.2, 0.7])),
              4: (np.array([[6.2, 0.4, 0.5], [5.5, 0.6, -0.5], [6.8, 0.2, 0.0]]),
-                 np.array([0.9, 0.4, 1.1]))},
+                 np.array([0.9, 0.4, 1.1])),
+             5: (np.array([[-2.0, 0.5, 1.5], [-1.0, -0.5, 1.0]]), np.array([4.0, 2.5]))},
         proj_pt=(2, np.array([6.1, 0.5, 1.0]), 2.5),      # a guided load on the trolley
         nodes={1: np.array([[4.0, 1.0, 1.0]]), 4: np.array([[6.0, 0.5, -1.0],
                                                            [7.0, 0.0, 0.0]])},
@@ -313,6 +331,7 @@ def _chain(linear=None):
         (0, -1, _drive(_gantry_motion()), ga["sign"], False, None, None, np.zeros(3),
          ga["axis"], None),
         (1, 0, True, ji["sign"], True, Kj, Kj @ Kj, ji["point"], None, 0),
+        (5, 1, None, 1.0, False, None, None, np.zeros(3), None, None),
         (2, 1, True, tr["sign"], False, None, None, np.zeros(3), tr["axis"], 1),
         (3, 2, _drive(_hook_motion()), ho["sign"], True, Kh, Kh @ Kh, ho["point"], None,
          None),
@@ -331,7 +350,7 @@ def _chain(linear=None):
 
 
 def _maps(t0=T0):
-    """The five bodies' maps as functions of (u0, u1, t) (module docstring)."""
+    """The six bodies' maps as functions of (u0, u1, t) (module docstring)."""
     sp_ = _spec()
     g, h = _hand_state(t0)
     ga, ji, tr, ho = sp_["gantry"], sp_["jib"], sp_["trolley"], sp_["hook"]
@@ -340,6 +359,7 @@ def _maps(t0=T0):
         tau = t - t0
         m = {0: _slider(ga["axis"], ga["sign"] * (g[0] + g[1] * tau + g[2] * tau ** 2 / 2))}
         m[1] = _compose(m[0], _hinge(ji["axis"], ji["point"], ji["sign"] * u0 / ji["rho"]))
+        m[5] = m[1]                       # a counter-jib fixed to the jib
         m[2] = _compose(m[1], _slider(tr["axis"], tr["sign"] * u1 / tr["rho"]))
         m[3] = _compose(m[2], _hinge(ho["axis"], ho["point"],
                                      ho["sign"] * (h[0] + h[1] * tau + h[2] * tau ** 2 / 2)))
