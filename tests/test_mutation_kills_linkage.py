@@ -50,14 +50,14 @@ nodes:
   C: [2, 0, 9]
   A: [AX, 0, AZ]
   H: [11, 0, 5]
-ground: [O, G, A]
+ground: [O, G, GA]
 masses: {H: 1000}
 bodies:
   boom: {mass: 2000, com: [6, 0, 7], inertia: 2.0e4, nodes: [O, E, B]}
   tie: {mass: 100, com: [2, 0, 8], inertia: 50, nodes: [E, Q, C]}
   rocker: {mass: 300, com: [-2, 0, 9], inertia: 100, nodes: [G, Q]}
 joints:
-  - {name: foot, type: hinge, bodies: [ground, boom], at: O, axis: [0, 1, 0]FOOT}
+  - {name: foot, type: hinge, bodies: [boom, ground], at: O, axis: [0, 1, 0]FOOT}
   - {name: te, type: hinge, bodies: [boom, tie], at: E, axis: [0, 1, 0]}
   - {name: tq, type: hinge, bodies: [tie, rocker], at: Q, axis: [0, 1, 0]}
   - {name: pivot, type: hinge, bodies: [ground, rocker], at: G, axis: [0, -1, 0]PIVOT}
@@ -84,8 +84,13 @@ ALPHA_REF = np.arctan2(10.0, 10.0)           # O -> B
 BODY_NODES = {"boom": "OEB", "tie": "EQC", "rocker": "GQ"}
 
 
-def drive_of(tmp_path, dist=0.5, foot="", pivot="", a=A_NODE, planar=True):
+def drive_of(tmp_path, dist=0.5, foot="", pivot="", a=A_NODE, planar=True,
+             a_on=None):
+    """The scene's model and drive; `a_on="boom"`: A on the boom, not the ground."""
     model = MODEL.replace("AX", str(a[0])).replace("AZ", str(a[1]))
+    model = model.replace("G, GA]", "G]" if a_on else "G, A]")
+    model = model.replace("nodes: [O, E, B]", "nodes: [O, E, B, A]" if a_on else
+                          "nodes: [O, E, B]")
     model = model.replace("FOOT", foot).replace("PIVOT", pivot)
     if not planar:
         model = model.replace("plane: xz\n", "")
@@ -100,9 +105,9 @@ def drive_of(tmp_path, dist=0.5, foot="", pivot="", a=A_NODE, planar=True):
 
 # ------------------------------------------------------------------ hand geometry
 
-def _maps(alpha, a=A_NODE):
+def _maps(alpha, a=A_NODE, a_on=None):
     """{body: (R (2, 2), p (2,))} with X = R X0 + p, and d(alpha); alpha may be complex
-    (every step analytic)."""
+    (every step analytic); A at `a` on the ground, or on the body `a_on`."""
     N = NODES
     th = alpha - ALPHA_REF
     c, s = np.cos(th), np.sin(th)
@@ -130,32 +135,35 @@ def _maps(alpha, a=A_NODE):
         out[name] = (R, X - R @ X0)
     Rt, pt = out["tie"]
     C = Rt @ N["C"] + pt
+    if a_on:
+        Ra, pa = out[a_on]
+        a = Ra @ a + pa
     d = np.sqrt((C[0] - a[0]) ** 2 + (C[1] - a[1]) ** 2)
     return out, d
 
 
-def _flat(alpha, a=A_NODE):
-    out, d = _maps(alpha, a)
+def _flat(alpha, a=A_NODE, a_on=None):
+    out, d = _maps(alpha, a, a_on)
     return np.concatenate([np.concatenate([R.ravel(), p]) for R, p in
                            (out[b] for b in BODY_NODES)] + [np.atleast_1d(d)])
 
 
-def _derivs(alpha, a=A_NODE):
+def _derivs(alpha, a=A_NODE, a_on=None):
     """(f, f', f'') of the flattened maps and d by Cauchy's formula (module docstring)."""
     n, r = 32, 0.02
     z = alpha + r * np.exp(2j * np.pi * np.arange(n) / n)
-    F = np.array([_flat(zk, a) for zk in z])
+    F = np.array([_flat(zk, a, a_on) for zk in z])
     c = np.fft.fft(F, axis=0) / n
-    return _flat(alpha, a), (c[1] / r).real, (2 * c[2] / r ** 2).real
+    return _flat(alpha, a, a_on), (c[1] / r).real, (2 * c[2] / r ** 2).real
 
 
-def _reference(t, motion, a=A_NODE):
+def _reference(t, motion, a=A_NODE, a_on=None):
     """alpha, alpha', alpha'' and every body's (R, R', R'', p, p', p'') in time."""
     s, ds, dds = motion(t)
     d_ref = float(np.linalg.norm(NODES["C"] - a))
-    al = brentq(lambda x: _maps(x, a)[1] - (d_ref + s), ALPHA_REF - 0.3, ALPHA_REF + 0.3,
-                xtol=1e-15)
-    f, f1, f2 = _derivs(al, a)
+    al = brentq(lambda x: _maps(x, a, a_on)[1] - (d_ref + s), ALPHA_REF - 0.3,
+                ALPHA_REF + 0.3, xtol=1e-15)
+    f, f1, f2 = _derivs(al, a, a_on)
     d1, d2 = f1[-1], f2[-1]
     a1 = ds / d1
     a2 = (dds - d2 * a1 ** 2) / d1
@@ -175,14 +183,18 @@ def _xz(M3):
 TIMES = (0.0, 1.3, 2.2, 3.7, 5.0)             # rest, accelerating, cruising, braking, end
 
 
-def test_angle_rates_and_body_motions_against_hand_geometry(tmp_path):
-    model, drive = drive_of(tmp_path)
+@pytest.mark.parametrize("a_on", [None, "boom"])
+def test_angle_rates_and_body_motions_against_hand_geometry(tmp_path, a_on):
+    """The cylinder from the ground (A at (2, -3)) or from the boom (A at (8, 9): both
+    ends move, d' = e . (C' - A'), d'' with C'' - A'')."""
+    a = np.array([8.0, 9.0]) if a_on else A_NODE
+    model, drive = drive_of(tmp_path, a=a, a_on=a_on)
     ld = LinkageDrive(model, drive, {})
     names = [b.name for b in model.bodies]
     assert sorted(ld.bodies) == [0, 1, 2]
-    assert ld.d_ref == pytest.approx(12.0, abs=1e-12)       # |C - A| = 9 - (-3)
+    assert ld.d_ref == pytest.approx(np.linalg.norm(NODES["C"] - a), abs=1e-12)
     for t in TIMES:
-        al, a1, a2, maps = _reference(t, drive.motion)
+        al, a1, a2, maps = _reference(t, drive.motion, a, a_on)
         got = ld.solve(t)
         assert abs(got[0] - al) < 1e-11, t
         assert abs(got[1] - a1) < 1e-9 * max(1.0, abs(a1)), t
@@ -253,13 +265,14 @@ def test_check_range_passes_inside_and_resets_the_solution(tmp_path):
 
 @pytest.mark.parametrize("which", ["foot", "pivot"])
 def test_check_range_names_the_turn_past_the_range(tmp_path, which):
-    """The foot's axis is +y: its turn is -theta_boom (a turn about +y takes x toward
-    -z); the pivot's axis is -y: its turn is +theta_rocker. The boom rises (theta > 0),
+    """The foot joins [boom, ground] about +y: the ground's turn relative to the boom,
+    -(0 - theta_boom) = +theta_boom (a turn about +y takes x toward -z); the pivot
+    joins [ground, rocker] about -y: its turn is +theta_rocker. The boom rises (theta > 0),
     the rocker turns with it (theta_rocker > 0): each range cut at half the turn."""
     model0, drive0 = drive_of(tmp_path)
     th0, th1 = _turns(drive0.motion)
     f = 180 / np.pi
-    turn = -th1["boom"] if which == "foot" else th1["rocker"]
+    turn = th1["boom"] if which == "foot" else th1["rocker"]
     lo, hi = sorted((0.0, turn * f))
     cut = [-40, hi / 2] if turn > 0 else [lo / 2, 40]
     rng = f", range_deg: [{cut[0]}, {cut[1]}]"
@@ -305,6 +318,7 @@ def test_a_driven_joint_of_the_linkage_is_refused(tmp_path):
     with pytest.raises(ModelError) as exc:
         LinkageDrive(model, drive, {1: other})
     assert "drive 'hook' moves a joint of the linkage" in str(exc.value)
+    assert exc.value.file == model.scene_file and exc.value.entry == "analysis.drives.hook"
     LinkageDrive(model, drive, {7: other})     # a joint outside the linkage: accepted
 
 
@@ -314,7 +328,8 @@ def test_a_model_not_in_a_plane_is_refused(tmp_path):
     model = dataclasses.replace(model, planar=False)
     with pytest.raises(ModelError) as exc:
         LinkageDrive(model, drive, {})
-    assert "planar" in str(exc.value)
+    assert "needs a planar model (plane: xz) in this version" in exc.value.message
+    assert exc.value.file == model.scene_file and exc.value.entry == drive.entry
 
 
 def test_check_range_up_to_a_dead_point(tmp_path):
@@ -324,7 +339,7 @@ def test_check_range_up_to_a_dead_point(tmp_path):
     a = np.array([-5.0, 1.0])
     model, drive = drive_of(tmp_path, a=a, foot=", range_deg: [-20, 20]")
     LinkageDrive(model, drive, {}).check_range(6.0)
-    model, drive = drive_of(tmp_path, a=a, foot=", range_deg: [-1, 20]")
+    model, drive = drive_of(tmp_path, a=a, foot=", range_deg: [-20, 1]")
     with pytest.raises(ModelError) as exc:
         LinkageDrive(model, drive, {}).check_range(6.0)
     # the boom rises by more than 1 deg before the dead point (alpha 0.785 -> 0.93)
