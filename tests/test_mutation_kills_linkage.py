@@ -58,7 +58,7 @@ bodies:
   rocker: {mass: 300, com: [-2, 0, 9], inertia: 100, nodes: [G, Q]}
 joints:
   - {name: foot, type: hinge, bodies: [boom, ground], at: O, axis: [0, 1, 0]FOOT}
-  - {name: te, type: hinge, bodies: [boom, tie], at: E, axis: [0, 1, 0]}
+  - {name: te, type: hinge, bodies: [boom, tie], at: E, axis: [0, 1, 0]TE}
   - {name: tq, type: hinge, bodies: [tie, rocker], at: Q, axis: [0, 1, 0]}
   - {name: pivot, type: hinge, bodies: [ground, rocker], at: G, axis: [0, -1, 0]PIVOT}
 linear_drives:
@@ -85,13 +85,13 @@ BODY_NODES = {"boom": "OEB", "tie": "EQC", "rocker": "GQ"}
 
 
 def drive_of(tmp_path, dist=0.5, foot="", pivot="", a=A_NODE, planar=True,
-             a_on=None):
+             a_on=None, te=""):
     """The scene's model and drive; `a_on="boom"`: A on the boom, not the ground."""
     model = MODEL.replace("AX", str(a[0])).replace("AZ", str(a[1]))
     model = model.replace("G, GA]", "G]" if a_on else "G, A]")
     model = model.replace("nodes: [O, E, B]", "nodes: [O, E, B, A]" if a_on else
                           "nodes: [O, E, B]")
-    model = model.replace("FOOT", foot).replace("PIVOT", pivot)
+    model = model.replace("FOOT", foot).replace("PIVOT", pivot).replace("TE", te)
     if not planar:
         model = model.replace("plane: xz\n", "")
     mp = tmp_path / "fourbar.yaml"
@@ -263,18 +263,20 @@ def test_check_range_passes_inside_and_resets_the_solution(tmp_path):
     assert abs(got[0] - al) < 1e-11 and abs(got[2] - a2) < 1e-9
 
 
-@pytest.mark.parametrize("which", ["foot", "pivot"])
+@pytest.mark.parametrize("which", ["foot", "pivot", "te"])
 def test_check_range_names_the_turn_past_the_range(tmp_path, which):
     """The foot joins [boom, ground] about +y: the ground's turn relative to the boom,
     -(0 - theta_boom) = +theta_boom (a turn about +y takes x toward -z); the pivot
-    joins [ground, rocker] about -y: its turn is +theta_rocker. The boom rises (theta > 0),
-    the rocker turns with it (theta_rocker > 0): each range cut at half the turn."""
+    joins [ground, rocker] about -y: its turn is +theta_rocker; te joins [boom, tie]
+    about +y: -(theta_tie - theta_boom). Each range cut at half the turn."""
     model0, drive0 = drive_of(tmp_path)
     th0, th1 = _turns(drive0.motion)
     f = 180 / np.pi
-    turn = th1["boom"] if which == "foot" else th1["rocker"]
+    turn = {"foot": th1["boom"], "pivot": th1["rocker"],
+            "te": -(th1["tie"] - th1["boom"])}[which]
+    assert abs(turn) > 0.01
     lo, hi = sorted((0.0, turn * f))
-    cut = [-40, hi / 2] if turn > 0 else [lo / 2, 40]
+    cut = [-40, round(hi / 2, 4)] if turn > 0 else [round(lo / 2, 4), 40]
     rng = f", range_deg: [{cut[0]}, {cut[1]}]"
     model, drive = drive_of(tmp_path, **{which: rng})
     ld = LinkageDrive(model, drive, {})
@@ -282,11 +284,28 @@ def test_check_range_names_the_turn_past_the_range(tmp_path, which):
         ld.check_range(6.0)
     msg = str(exc.value)
     assert f"[{lo + 0.0:.6g}, {hi + 0.0:.6g}] deg within 6 s" in msg, msg
-    assert "past the end of its range" in msg and which in msg
+    assert f"past the end of its range [{cut[0]:g}, {cut[1]:g}] deg" in msg, msg
+    assert f"hinge '{which}'" in msg or which in msg
+    assert exc.value.file == model.scene_file
+    assert exc.value.entry == f"{drive.entry}.profile"
     # the solution is reset after the check: the next solve starts from the reference
     got = ld.solve(1.3)
     al, a1, a2, _ = _reference(1.3, drive.motion)
     assert abs(got[0] - al) < 1e-11 and abs(got[1] - a1) < 1e-9
+
+
+def test_check_range_looks_only_within_the_duration(tmp_path):
+    """A range the boom passes only after 3 s (between its turns at 3 s and at the
+    stroke's end, 4.5 s): a run of 3 s is accepted, one of 6 s refused."""
+    _, drive0 = drive_of(tmp_path)
+    f = 180 / np.pi
+    b3 = _turns(drive0.motion, 3.0)[1]["boom"]
+    b6 = _turns(drive0.motion, 6.0)[1]["boom"]
+    assert b6 - b3 > 0.01
+    model, drive = drive_of(tmp_path, foot=f", range_deg: [-40, {(b3 + b6) / 2 * f}]")
+    LinkageDrive(model, drive, {}).check_range(3.0)
+    with pytest.raises(ModelError):
+        LinkageDrive(model, drive, {}).check_range(6.0)
 
 
 def test_the_turns_of_the_hand_geometry_have_the_signs_the_range_test_assumes(tmp_path):
