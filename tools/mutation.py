@@ -128,8 +128,6 @@ PRESETS = {
     # own tests, tests/test_operation.py, take about 70 s)
     "profiles": ("cranefe/analysis/operation/profiles.py",
                  ["tests/test_mutation_kills_profiles.py"]),
-    "joints": ("cranefe/analysis/operation/joints.py",
-               ["tests/test_mutation_kills_joints.py"]),
     # assembly/: every file of the package (a glob), with the fast model-building tests;
     # _springs: every field of the spring rows, the pattern, null space, COO step, Reuse
     "assembly": ("cranefe/assembly/*",
@@ -159,6 +157,17 @@ PRESETS = {
     # which runs it, takes about 30 s idle and is left out)
     "shaping_engine": ("cranefe/analysis/shaping/engine.py",
                        ["tests/test_mutation_kills_shaping_engine.py"]),
+    # joints: the rewritten module (JointChain, Taylor jets); tests/test_operation_joint_chain.py
+    # (~60 s) is too slow per mutant: the chain's kill tests check it against a hand
+    # Lagrangian and Cauchy-formula derivatives of the composed closed-form maps
+    "joints": ("cranefe/analysis/operation/joints.py",
+               ["tests/test_mutation_kills_joints.py",
+                "tests/test_mutation_kills_joints_chain.py"]),
+    # linkage: luffing by a linear drive in the operation engine; its engine tests
+    # (tests/test_operation_dyn.py, test_operation_fixes.py) are too slow per mutant:
+    # a four-bar luffed by a cylinder on its coupler against hand geometry
+    "linkage": ("cranefe/analysis/operation/linkage.py",
+                ["tests/test_mutation_kills_linkage.py"]),
 }
 
 
