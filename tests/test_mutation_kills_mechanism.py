@@ -1,0 +1,605 @@
+"""Value tests of cranefe/analysis/operation/mechanism.py (issue 20, mutation testing).
+
+The operation engine's equations at a given (t, q, q') are checked against forces,
+kinematics and energies written out by hand for small scenes (docs/operations.md,
+"Mechanics"), never against the engine itself:
+
+- a pendulum hanging from a trolley on a slider moved by a trapezoid: the trolley's
+  position, speed and acceleration (s = a t^2/2, ...), the load's force
+  F = m g - S e with S = EA ln(L/L0), L0 = L_ref exp(-m g/EA), the tangent K = -dF/dq by
+  central differences of that hand force, the rope's dashpot b = psi c / (2 pi w) with
+  c = EA/L, w^2 = c/m (one fall, e . M^-1 e = 1/m), the energies
+  (1/2 m v^2, m g z, Hencky EA (L ln(L/L0) - L + L0)) and the trolley's power
+  -(S + S_d) e . V_K (the force the trolley puts on the rope end times its speed);
+- a hoisting drum: the unstretched length L0 = L0_ref - R theta / lambda_ref with the
+  drum angle of its profile (theta = omega t), the elongation rate, the drum's power
+  R (S + S_d) omega and the energy the wound rope carries onto it,
+  S R omega - dU/dt|winding with U(L0) = EA (L ln(L/L0) - L + L0) at fixed L,
+  dU/dL0 = EA (1 - L/L0);
+  a torque or linear-motor drum as a coordinate (F = M_drive - R S, the drum's row of K
+  and its inertia, the motor's C);
+- slewing with a trolley running along the jib: X = R_z(phi) (r + s, 0, z),
+  V and A by the product rule (centripetal, Coriolis, tangential terms) by hand;
+- a torque-, motor-driven or free luffing arm (a joint coordinate u = rho phi): its
+  static holding torque and the luffing rope's tension from the moment balance about
+  the hinge, its inertia I_O / rho^2 (+ rotor gear^2 / rho^2), F by moments;
+- an axial spring with its dashpot, sway off (the load follows its trolley), and the
+  errors and warnings that name the entry.
+
+Tolerances: 1e-9 relative for closed forms evaluated in double precision (a few
+operations on O(1-1e7) numbers, ln(L/L0) of a 1e-3 strain loses ~3 digits: 1e-13
+becomes 1e-10); central differences with step 1e-6 m: truncation h^2 |F'''| ~ 1e-12 of
+EA/L, round-off 1e-16 |F| / h ~ 1e-6 N/m against entries of 1e4-1e6 N/m: bound 1e-6
+relative.
+"""
+
+import functools
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cranefe.analysis.operation.mechanism import Mechanism
+from cranefe.analysis.operation.scene import parse
+from cranefe.errors import AnalysisError, ModelError
+from cranefe.model import load
+
+G = 9.81
+RTOL = 1e-9
+
+
+@functools.lru_cache(maxsize=None)
+def _dir():
+    return Path(tempfile.mkdtemp(prefix="mutkill-mech-"))
+
+
+_count = [0]
+
+
+def _scene(model_text, analysis, effects="{}"):
+    _count[0] += 1
+    d = _dir()
+    m = d / f"m{_count[0]}.yaml"
+    m.write_text(model_text)
+    s = d / f"s{_count[0]}.yaml"
+    s.write_text(f"cranefe: 1\nscene: t\nmodel: {m}\neffects: {effects}\n"
+                 f"analysis:\n  type: operation\n{analysis}")
+    return load(s)
+
+
+def _mech(model):
+    return Mechanism(model, parse(model))
+
+
+TROLLEY = """cranefe: 1
+name: trolley pendulum
+plane: xz
+nodes:
+  K: [0, 0, 10]
+  H: [0, 0, 0]
+masses: {H: MASS}
+bodies:
+  trolley: {mass: 500, com: [0, 0, 10], inertia: [10, 10, 10], nodes: [K]}
+joints:
+  - {name: travel, type: slider, bodies: [ground, trolley], at: K, axis: [1, 0, 0],
+     range: [-1, 20]}
+ropes:
+  hoist: {EA: EAVAL, psi: 0.3, path: [K, H]}
+"""
+TROLLEY_DRIVE = ("  duration: 4\n  drives:\n    trolley: {slider: travel, profile: "
+                 "{type: trapezoid, distance: 2, v_max: 1, a_max: 1}}\n")
+
+
+def trolley_xs(t):
+    """The trapezoid of distance 2, v_max 1, a_max 1 by hand: (s, s', s'')."""
+    if t < 1:
+        return 0.5 * t * t, t, 1.0
+    if t < 2:
+        return 0.5 + (t - 1), 1.0, 0.0
+    if t < 3:
+        u = t - 2
+        return 1.5 + u - 0.5 * u * u, 1 - u, -1.0
+    return 2.0, 0.0, 0.0
+
+
+def _trolley(m=1000.0, EA=1.0e7, effects="{}"):
+    return _mech(_scene(TROLLEY.replace("MASS", str(m)).replace("EAVAL", str(EA)),
+                        TROLLEY_DRIVE, effects))
+
+
+def _pendulum_force(t, x, z, m, EA, L0):
+    """Hand force on the load (x, z) of the trolley pendulum (no damping)."""
+    xs = trolley_xs(t)[0]
+    d = np.array([x - xs, z - 10.0])
+    L = np.hypot(*d)
+    S = EA * np.log(L / L0)
+    return np.array([0.0, -m * G]) - S * d / L, L, S
+
+
+def test_trolley_static_state_and_kinematics():
+    m, EA = 1000.0, 1.0e7
+    mech = _trolley(m, EA)
+    assert mech.n == 2 and mech.nc == 2 and mech.nJ == 0
+    np.testing.assert_allclose(mech.S0, [m * G], rtol=RTOL)
+    np.testing.assert_allclose(mech.L_ref, [10.0], rtol=RTOL)
+    np.testing.assert_allclose(mech.lam_ref, [np.exp(m * G / EA)], rtol=RTOL)
+    np.testing.assert_allclose(mech.L0_ref, [10.0 * np.exp(-m * G / EA)], rtol=RTOL)
+    np.testing.assert_allclose(mech.q0, [0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(mech.M, [m, m], rtol=0)
+    assert mech.taut0.tolist() == [True]
+    assert mech.free.tolist() == [1] and mech.kin.tolist() == [0]
+    for t in (0.0, 0.5, 1.5, 2.5, 3.5):
+        X, V, A, th = mech.kinematics(t)
+        s, ds, dds = trolley_xs(t)
+        np.testing.assert_allclose(X[0], [s, 0, 10], atol=1e-12)
+        np.testing.assert_allclose(V[0], [ds, 0, 0], atol=1e-12)
+        np.testing.assert_allclose(A[0], [dds, 0, 0], atol=1e-12)
+        # a second call in the same state returns the same (cached) arrays
+        X2 = mech.kinematics(t)[0]
+        np.testing.assert_allclose(X2[0], [s, 0, 10], atol=1e-12)
+        mot, Xp = mech.poses(t, {})
+        np.testing.assert_allclose(Xp[0], [s, 0, 10], atol=1e-12)
+        R, dR, ddR, p, dp, ddp = mech.body_motions(t)[0]
+        np.testing.assert_allclose(R, np.eye(3), atol=0)
+        np.testing.assert_allclose([p, dp, ddp], [[s, 0, 0], [ds, 0, 0], [dds, 0, 0]],
+                                   atol=1e-12)
+
+
+@pytest.mark.parametrize("t", [0.5, 2.5])
+def test_trolley_pendulum_forces_and_tangent_by_hand(t):
+    m, EA = 1000.0, 1.0e7
+    mech = _trolley(m, EA)
+    L0 = 10.0 * np.exp(-m * G / EA)
+    q = np.array([0.7, 0.9])           # the load off the vertical, rope stretched
+    v = np.array([0.3, -0.2])
+    taut = np.array([True])
+    ev = mech.evaluate(t, q, v, taut, damping=False)
+    F, L, S = _pendulum_force(t, *q, m, EA, L0)
+    np.testing.assert_allclose(ev.F, F, rtol=RTOL)
+    np.testing.assert_allclose([ev.L[0], ev.L0[0], ev.S[0]], [L, L0, S], rtol=RTOL)
+    h = 1e-6
+    Kfd = np.zeros((2, 2))
+    for j in range(2):
+        dq = np.zeros(2)
+        dq[j] = h
+        Kfd[:, j] = -(_pendulum_force(t, *(q + dq), m, EA, L0)[0]
+                      - _pendulum_force(t, *(q - dq), m, EA, L0)[0]) / (2 * h)
+    np.testing.assert_allclose(ev.K, Kfd, rtol=1e-6, atol=1e-6 * np.abs(Kfd).max())
+    np.testing.assert_allclose(ev.C, 0.0, atol=0)
+    xs, vs = trolley_xs(t)[:2]
+    e = np.array([q[0] - xs, 0, q[1] - 10.0]) / L
+    edot = e @ (np.array([v[0], 0, v[1]]) - np.array([vs, 0, 0]))
+    np.testing.assert_allclose(ev.edot, [edot], rtol=RTOL)
+    np.testing.assert_allclose(ev.X[1], [q[0], 0, q[1]], atol=0)
+    np.testing.assert_allclose(ev.V[1], [v[0], 0, v[1]], atol=0)
+    # powers: the trolley feeds -(S) e . V_K; no dashpot, nothing wound
+    assert ev.P_drive == pytest.approx(-S * e[0] * vs, rel=RTOL, abs=1e-9)
+    assert ev.P_diss == 0.0 and ev.P_wound == 0.0 and ev.T_guided == 0.0
+    # energies: 1/2 m v^2, m g z, Hencky
+    T, Vg, U = mech.energy(ev, taut)
+    assert T == pytest.approx(0.5 * m * (v @ v), rel=RTOL)
+    assert Vg == pytest.approx(m * G * q[1], rel=RTOL)
+    assert U == pytest.approx(EA * (L * np.log(L / L0) - L + L0), rel=1e-7)
+    # slack: no force, no energy
+    evs = mech.evaluate(t, q, v, np.array([False]))
+    np.testing.assert_allclose(evs.F, [0, -m * G], atol=0)
+    assert mech.energy(evs, np.array([False]))[2] == 0.0
+    # mass matrix
+    np.testing.assert_allclose(mech.mass_matrix(ev), np.diag([m, m]), atol=0)
+
+
+def test_trolley_rope_dashpot_by_hand():
+    """damping: exact: b = psi c / (2 pi w), c = EA/L, w^2 = c / m (one fall)."""
+    m, EA, psi, t = 1000.0, 1.0e7, 0.3, 0.5
+    mech = _trolley(m, EA, effects="{damping: exact}")
+    L0 = 10.0 * np.exp(-m * G / EA)
+    q, v = np.array([0.7, 0.9]), np.array([0.3, -0.2])
+    taut = np.array([True])
+    ev = mech.evaluate(t, q, v, taut)
+    F, L, S = _pendulum_force(t, *q, m, EA, L0)
+    c = EA / L
+    b = psi * c / (2 * np.pi * np.sqrt(c / m))
+    xs, vs = trolley_xs(t)[:2]
+    e2 = np.array([q[0] - xs, q[1] - 10.0]) / L
+    edot = e2 @ (v - [vs, 0])
+    Sd = b * edot
+    np.testing.assert_allclose(ev.Sd, [Sd], rtol=RTOL)
+    np.testing.assert_allclose(ev.F, F - Sd * e2, rtol=RTOL)
+    np.testing.assert_allclose(ev.C, b * np.outer(e2, e2), rtol=RTOL, atol=1e-9 * b)
+    assert ev.P_diss == pytest.approx(Sd * edot, rel=RTOL)
+    assert ev.P_drive == pytest.approx(-(S + Sd) * e2[0] * vs, rel=RTOL)
+    # without damping asked for: none
+    ev0 = mech.evaluate(t, q, v, taut, damping=False)
+    np.testing.assert_allclose(ev0.Sd, [0.0], atol=0)
+
+
+def test_sway_off_the_load_follows_its_trolley():
+    m, EA, t = 1000.0, 1.0e7, 1.5
+    mech = _trolley(m, EA, effects="{sway: false}")
+    assert mech.n == 1
+    assert mech.root.tolist() == [0] and mech.hang.tolist() == [0]
+    L0 = 10.0 * np.exp(-m * G / EA)
+    z, vz = 0.05, 0.1
+    ev = mech.evaluate(t, np.array([z]), np.array([vz]), np.array([True]), damping=False)
+    xs, vs = trolley_xs(t)[:2]
+    L = 10.0 - z
+    S = EA * np.log(L / L0)
+    np.testing.assert_allclose(ev.X[1], [xs, 0, z], atol=1e-12)
+    np.testing.assert_allclose(ev.V[1], [vs, 0, vz], atol=1e-12)
+    np.testing.assert_allclose(ev.F, [S - m * G], rtol=RTOL)
+    np.testing.assert_allclose(ev.K, [[EA / L]], rtol=RTOL)
+    assert ev.T_guided == pytest.approx(0.5 * m * vs * vs, rel=RTOL)
+    T, Vg, U = mech.energy(ev, np.array([True]))
+    assert T == pytest.approx(0.5 * m * (vs * vs + vz * vz), rel=RTOL)
+
+
+def test_a_load_off_the_vertical_without_sway_is_refused():
+    text = TROLLEY.replace("H: [0, 0, 0]", "H: [1, 0, 0]").replace(
+        "MASS", "1000").replace("EAVAL", "1.0e7")
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(text, TROLLEY_DRIVE, "{sway: false}")
+    assert exc.value.entry == "nodes.H" and "hang vertically below 'K'" in str(exc.value)
+
+
+def _scene_mech(text, analysis, effects="{}"):
+    return _mech(_scene(text, analysis, effects))
+
+
+# ----------------------------------------------------------------- drums
+
+WINCH = """cranefe: 1
+name: winch
+plane: xz
+nodes:
+  W: [-2, 0, 40]
+  S: [0, 0, 40]
+  H: [0, 0, 30]
+ground: [W, S]
+masses: {H: 1000}
+drums:
+  hoist: {node: W, radius: 0.5, inertia: 10, rope_reserve: 100}
+ropes:
+  r: {EA: 2.0e6, psi: 0.2, extra_length: 1.5, path: [hoist, S, {node: H, falls: 2}]}
+"""
+
+
+def test_drum_profile_winds_rope_by_hand():
+    """L0 = L0_ref - R theta / lambda_ref, theta = omega t; L = |WS| + 2 l + extra."""
+    m, EA, R, om = 1000.0, 2.0e6, 0.5, 0.4
+    mech = _scene_mech(WINCH, f"  duration: 5\n  drives:\n    h: {{drum: hoist, profile: "
+                       f"{{type: table, speed: [[0, {om}]]}}}}\n", "{damping: exact}")
+    S0 = m * G / 2
+    Lr = 2.0 + 2 * 10.0 + 1.5
+    lam = np.exp(S0 / EA)
+    np.testing.assert_allclose(mech.S0, [S0], rtol=RTOL)
+    np.testing.assert_allclose(mech.L_ref, [Lr], rtol=RTOL)
+    np.testing.assert_allclose(mech.hold_torque, [R * S0], rtol=RTOL)
+    assert mech.n == 2 and not mech.qdrums
+    t = 1.5
+    theta = om * t
+    L0 = Lr / lam - R * theta / lam
+    np.testing.assert_allclose(mech.unstretched(np.array([theta])), [L0], rtol=RTOL)
+    q, v = np.array([0.2, 30.1]), np.array([0.05, 0.3])
+    ev = mech.evaluate(t, q, v, np.array([True]))
+    l = np.hypot(q[0], 40 - q[1])
+    L = 2.0 + 2 * l + 1.5
+    S = EA * np.log(L / L0)
+    e = np.array([q[0], q[1] - 40]) / l          # from S to H
+    edot = 2 * e @ v + R * om
+    c = EA / L
+    w = np.sqrt(c * 4 / m)                         # two falls: (2 e) . M^-1 (2 e)
+    b = 0.2 * c / (2 * np.pi * w)
+    Sd = b * edot
+    np.testing.assert_allclose([ev.L[0], ev.L0[0], ev.S[0]], [L, L0, S], rtol=RTOL)
+    np.testing.assert_allclose(ev.theta, [theta], rtol=RTOL)
+    np.testing.assert_allclose(ev.omega, [om], rtol=RTOL)
+    np.testing.assert_allclose(ev.edot, [edot], rtol=RTOL)
+    np.testing.assert_allclose(ev.Sd, [Sd], rtol=RTOL)
+    np.testing.assert_allclose(ev.F, np.array([0, -m * G]) - 2 * (S + Sd) * e, rtol=RTOL)
+    # powers: the drum R (S + Sd) omega; the wound energy S R omega - dU/dt|winding
+    # with U(L0) = EA (L ln(L/L0) - L + L0) at fixed L, dL0/dt = -R omega / lambda_ref
+    assert ev.P_drive == pytest.approx(R * (S + Sd) * om, rel=RTOL)
+    assert ev.P_diss == pytest.approx(Sd * edot, rel=RTOL)
+
+    def U(L0_):
+        return EA * (L * np.log(L / L0_) - L + L0_)
+    dU = EA * (1 - L / L0) * (-R * om / lam)       # dU/dL0 = EA (1 - L/L0)
+    assert ev.P_wound == pytest.approx(S * R * om - dU, rel=1e-7)
+    T, Vg, Ue = mech.energy(ev, np.array([True]))
+    assert Ue == pytest.approx(U(L0), rel=1e-7)
+    assert T == pytest.approx(0.5 * m * (v @ v), rel=RTOL)
+    # the drum's rope paid out past its reserve: AnalysisError only for coordinates
+    mech.check_range(ev, t)
+
+
+@pytest.mark.parametrize("kind", ["torque", "motor"])
+def test_torque_and_motor_drums_as_coordinates(kind):
+    m, EA, R, J = 1000.0, 2.0e6, 0.5, 10.0
+    drive = "torque: 3000" if kind == "torque" else \
+        "motor: {stall_torque: 400, synchronous_speed: 157}"
+    gear = "" if kind == "torque" else ", motor: {rotor_inertia: 0.2, gear_ratio: 20}"
+    text = WINCH.replace("rope_reserve: 100", "rope_reserve: 100" + gear)
+    J = J if kind == "torque" else J + 0.2 * 20 ** 2     # reduced to the drum
+    mech = _scene_mech(text, f"  duration: 5\n  drives:\n    h: {{drum: hoist, {drive}}}\n")
+    assert mech.n == 3 and mech.qdrums == [0]
+    np.testing.assert_allclose(mech.M, [m, m, J], rtol=0)
+    S0 = m * G / 2
+    Lr = 23.5
+    lam = np.exp(S0 / EA)
+
+    def hand(qv):
+        x, z, th, om = qv
+        l = np.hypot(x, 40 - z)
+        L = 2.0 + 2 * l + 1.5
+        L0 = (Lr - R * th) / lam
+        S = EA * np.log(L / L0)
+        e = np.array([x, z - 40]) / l
+        if kind == "torque":
+            tq = 3000.0
+        else:
+            tq = 20 * 400 * (1 - 20 * om / 157)
+        return np.array([*(np.array([0, -m * G]) - 2 * S * e), tq - R * S]), tq
+    q, v = np.array([0.2, 30.1, 0.3]), np.array([0.05, 0.3, 0.7])
+    ev = mech.evaluate(1.0, q, v, np.array([True]))
+    F, tq = hand([*q, v[2]])
+    np.testing.assert_allclose(ev.F, F, rtol=RTOL)
+    np.testing.assert_allclose(ev.drive_torque, [tq], rtol=RTOL)
+    h = 1e-6
+    Kfd = np.zeros((3, 3))
+    for j in range(3):
+        dq = np.zeros(4)
+        dq[j] = h
+        Kfd[:, j] = -(hand(np.r_[q, v[2]] + dq)[0] - hand(np.r_[q, v[2]] - dq)[0]) / (2 * h)
+    np.testing.assert_allclose(ev.K, Kfd, rtol=1e-6, atol=1e-6 * np.abs(Kfd).max())
+    C = np.zeros((3, 3))
+    if kind == "motor":
+        C[2, 2] = 20 * 20 * 400 / 157
+    np.testing.assert_allclose(ev.C, C, rtol=RTOL, atol=1e-9)
+    # energy: the drum's 1/2 J omega^2; power: the drive's torque times omega
+    T = mech.energy(ev, np.array([True]))[0]
+    assert T == pytest.approx(0.5 * m * (v[:2] @ v[:2]) + 0.5 * J * v[2] ** 2, rel=RTOL)
+    assert ev.P_drive == pytest.approx(tq * v[2], rel=RTOL)
+    # paying out past the reserve (theta R per radian, 100 m) stops the run
+    mech.check_range(ev, 1.0)
+    ev.theta[0] = -100.0 / R - 1.0
+    with pytest.raises(AnalysisError) as exc:
+        mech.check_range(ev, 2.5)
+    assert "drum 'hoist'" in str(exc.value) and "t = 2.5 s" in str(exc.value)
+    assert "rope_reserve 100 m" in str(exc.value)
+
+
+# ----------------------------------------------------------------- slewing
+
+SLEWING = """cranefe: 1
+name: slewing test crane
+nodes:
+  O: [0, 0, 0]
+  T: [0, 0, 30]
+  K: [6, 0, 30]
+  H: [6, 0, 20]
+ground: [O]
+masses: {H: 1000}
+bodies:
+  jib: {mass: 5000, com: [10, 0, 30], inertia: [1.0e3, 1.0e5, 1.0e5], nodes: [O, T]}
+  trolley: {mass: 500, com: [6, 0, 30], inertia: [10, 10, 10], nodes: [K]}
+joints:
+  - {name: slew, type: hinge, bodies: [ground, jib], at: O, axis: [0, 0, 1]}
+  - {name: travel, type: slider, bodies: [jib, trolley], at: K, axis: [1, 0, 0],
+     range: [-2, 20]}
+ropes:
+  hoist: {EA: 1.0e8, path: [K, H]}
+"""
+
+
+def test_slewing_with_a_running_trolley_by_hand():
+    """K = R_z(phi) (6 + s, 0, 30), phi = w t + a t^2/2 (a table from w0 to w1):
+    V = R' r + R r', A = R'' r + 2 R' r' + R r'' by hand."""
+    w0, w1, T1 = 0.2, 0.5, 2.0
+    mech = _scene_mech(SLEWING, f"  duration: 4\n  drives:\n    s: {{hinge: slew, profile: "
+                       f"{{type: table, speed: [[0, {w0}], [{T1}, {w1}]]}}}}\n"
+                       "    t: {slider: travel, profile: {type: trapezoid, distance: 2, "
+                       "v_max: 1, a_max: 1}}\n")
+    al = (w1 - w0) / T1
+    for t in (0.5, 1.5):
+        ph, dph, ddph = w0 * t + al * t * t / 2, w0 + al * t, al
+        s, ds, dds = trolley_xs(t)
+        c, sn = np.cos(ph), np.sin(ph)
+        r = 6 + s
+        X = np.array([r * c, r * sn, 30])
+        V = np.array([ds * c - r * sn * dph, ds * sn + r * c * dph, 0])
+        A = np.array([dds * c - 2 * ds * sn * dph - r * c * dph ** 2 - r * sn * ddph,
+                      dds * sn + 2 * ds * c * dph - r * sn * dph ** 2 + r * c * ddph, 0])
+        Xk, Vk, Ak, _ = mech.kinematics(t)
+        np.testing.assert_allclose(Xk[2], X, atol=1e-12)
+        np.testing.assert_allclose(Vk[2], V, atol=1e-12)
+        np.testing.assert_allclose(Ak[2], A, atol=1e-12)
+        np.testing.assert_allclose(Xk[1], [0, 0, 30], atol=1e-12)
+        Xp = mech.poses(t, {})[1]
+        np.testing.assert_allclose(Xp[2], X, atol=1e-12)
+        # the load's rope from the moving trolley: force by hand
+        q = np.array([X[0] + 0.1, X[1] - 0.2, 20.05])
+        ev = mech.evaluate(t, q, np.zeros(3), np.array([True]))
+        d = q - X
+        L = np.linalg.norm(d)
+        S = 1.0e8 * np.log(L / (10 * np.exp(-1000 * G / 1.0e8)))
+        np.testing.assert_allclose(ev.F, [0, 0, -1000 * G] - S * d / L, rtol=1e-8)
+        # power fed by the moving trolley: -S e . V_K
+        assert ev.P_drive == pytest.approx(-S * (d / L) @ V, rel=1e-8)
+
+
+# ----------------------------------------------------------------- springs
+
+SPRING = """cranefe: 1
+name: spring
+nodes:
+  A: [0, 0, 10]
+  H: [0, 0, 5]
+ground: [A]
+masses: {H: 200}
+springs:
+  - {name: s, type: axial, nodes: [A, H], stiffness: 4.0e5, psi: 0.4}
+"""
+
+
+def test_axial_spring_and_its_dashpot_by_hand():
+    m, k, psi = 200.0, 4.0e5, 0.4
+    mech = _scene_mech(SPRING, "  duration: 1\n", "{damping: exact}")
+    np.testing.assert_allclose(mech.N_ref, [m * G], rtol=RTOL)
+    np.testing.assert_allclose(mech.sp_dref, [5.0], rtol=RTOL)
+    q = np.array([0.3, -0.2, 4.9])
+    v = np.array([0.1, 0.2, -0.3])
+    ev = mech.evaluate(0.0, q, v, np.zeros(0, bool))
+    d = q - [0, 0, 10]
+    dl = np.linalg.norm(d)
+    e = d / dl
+    N = m * G + k * (dl - 5.0)
+    w = np.sqrt(k / m)
+    b = psi * k / (2 * np.pi * w)
+    Nd = b * (e @ v)
+    np.testing.assert_allclose(ev.N, [N + Nd], rtol=RTOL)
+    np.testing.assert_allclose(ev.F, [0, 0, -m * G] - (N + Nd) * e, rtol=RTOL)
+    Kh = k * np.outer(e, e) + N / dl * (np.eye(3) - np.outer(e, e))
+    np.testing.assert_allclose(ev.K, Kh, rtol=1e-9, atol=1e-9 * k)
+    np.testing.assert_allclose(ev.C, b * np.outer(e, e), rtol=1e-9, atol=1e-9 * b)
+    assert ev.P_diss == pytest.approx(Nd * (e @ v), rel=RTOL)
+    assert ev.P_drive == 0.0
+    T, Vg, U = mech.energy(ev, np.zeros(0, bool))
+    assert U == pytest.approx(m * G * (dl - 5) + 0.5 * k * (dl - 5) ** 2, rel=RTOL)
+    assert Vg == pytest.approx(m * G * q[2], rel=RTOL)
+    ev0 = mech.evaluate(0.0, q, v, np.zeros(0, bool), damping=False)
+    np.testing.assert_allclose(ev0.N, [N], rtol=RTOL)
+
+
+# ----------------------------------------------------------------- joint coordinates
+
+ARM = """cranefe: 1
+name: luffing arm
+plane: xz
+nodes:
+  O: [0, 0, 10]
+  T: [4, 0, 10]
+  P: [0, 0, 14]
+  H: [4, 0, 5]
+ground: [P]
+masses: {H: 300}
+bodies:
+  arm: {mass: 200, com: [2, 0, 10], inertia: [1, 50, 50], nodes: [O, T]}
+joints:
+  - {name: luff, type: hinge, bodies: [ground, arm], at: O, axis: [0, 1, 0],
+     range: [-1, 1]}
+ropes:
+  hoist: {EA: 1.0e8, path: [T, H]}
+  stay: {EA: 5.0e8, path: [P, T]}
+"""
+MB, ML, IO = 200.0, 300.0, 50.0 + 200.0 * 4.0     # arm mass, load, inertia about O
+
+
+def _arm(drive):
+    return _scene_mech(ARM, f"  duration: 2\n  drives:\n    d: {{hinge: luff, {drive}}}\n")
+
+
+def test_free_arm_hangs_on_its_stay_by_the_moment_balance():
+    """Moments about O (y axis, a positive turn takes the tip down): gravity
+    2 m_b g + 4 m_l g against the stay P-T, whose force S e (e = (-4, 0, 4)/sqrt 32)
+    at T = (4, 0, 10) has the moment -4 S 4 / sqrt 32."""
+    mech = _arm("free: true")
+    assert mech.nJ == 1 and mech.n == 3
+    stay = (2 * MB * G + 4 * ML * G) / (16 / np.sqrt(32))
+    np.testing.assert_allclose(mech.S0, [ML * G, stay], rtol=1e-9)
+    np.testing.assert_allclose(mech.joint_hold, [0.0], atol=1e-6)
+    assert mech.jc[0]["rho"] == pytest.approx(4.0)
+    np.testing.assert_allclose(mech.M, [ML, ML, IO / 16], rtol=1e-12)
+
+
+@pytest.mark.parametrize("kind", ["torque", "motor"])
+def test_held_arm_torque_motor_and_its_warning(kind):
+    """A torque- or motor-driven arm is held at rest: it carries the whole moment
+    (joint_hold = -(2 m_b + 4 m_l) g), the stay is at 0 N and the run warns."""
+    drive = "torque: -5000" if kind == "torque" else \
+        "gear_ratio: 30, rotor_inertia: 0.2, motor: {stall_torque: 400, synchronous_speed: 150}"
+    mech = _arm(drive)
+    hold = -(2 * MB + 4 * ML) * G
+    np.testing.assert_allclose(mech.joint_hold, [hold], rtol=1e-9)
+    np.testing.assert_allclose(mech.S0, [ML * G, 0.0], atol=1e-6)
+    assert any("drive 'd'" in w and "stay" in w and f"{hold:.6g}" in w
+               for w in mech.warnings), mech.warnings
+    rot = 0.0 if kind == "torque" else 0.2 * 30 ** 2
+    np.testing.assert_allclose(mech.M, [ML, ML, (IO + rot) / 16], rtol=1e-12)
+    # a state: the arm turned by phi, turning at dphi; the load at rest
+    rho, phi, dphi = 4.0, 0.1, 0.3
+    q = np.array([4.0, 5.0, rho * phi])
+    v = np.array([0.0, 0.0, rho * dphi])
+    taut = mech.taut0.copy()
+    ev = mech.evaluate(0.0, q, v, taut)
+    c, s = np.cos(phi), np.sin(phi)
+    Tn = np.array([4 * c, 10 - 4 * s])
+    d = np.array([4.0, 5.0]) - Tn
+    l = np.linalg.norm(d)
+    S = 1.0e8 * np.log(l / mech.L0_ref[0])
+    e = d / l
+    tq = -5000.0 if kind == "torque" else 30 * 400 * (1 - 30 * dphi / 150)
+    # moment of the rope on T about y: r_z F_x - r_x F_z, r = T - O
+    rz, rx = -4 * s, 4 * c
+    Mrope = rz * S * e[0] - rx * S * e[1]
+    Mg = 2 * c * MB * G
+    Fu = (tq + Mg + Mrope) / rho
+    # the stay is slack at rest (0 N) and stays so unless stretched: here it is shorter
+    np.testing.assert_allclose(ev.F[:2], np.array([0, -ML * G]) - S * e, rtol=1e-9)
+    assert ev.F[2] == pytest.approx(Fu, rel=1e-9)
+    np.testing.assert_allclose(ev.joint_torque, [tq], rtol=1e-12)
+    np.testing.assert_allclose(ev.MJ, [[(IO + rot) / 16]], rtol=1e-12)
+    np.testing.assert_allclose(mech.mass_matrix(ev)[2, 2], (IO + rot) / 16, rtol=1e-12)
+    np.testing.assert_allclose(mech.joint_accel(ev), [Fu / ((IO + rot) / 16)], rtol=1e-9)
+    if kind == "motor":
+        # dF_u/du' = tq'(dphi) / rho^2 = -30^2 400/150 / 16
+        assert ev.C[2, 2] == pytest.approx(30 * 30 * 400 / 150 / 16, rel=1e-9)
+    # energy: 1/2 (I_O + rotor) dphi^2, the arm's weight at its com
+    T, Vg, U = mech.energy(ev, taut)
+    assert T == pytest.approx(0.5 * (IO + rot) * dphi ** 2, rel=1e-9)
+    assert Vg == pytest.approx(MB * G * (10 - 2 * s) + ML * G * 5.0, rel=1e-9)
+    # power: the drive's torque times dphi (the load at rest, no prescribed motion)
+    assert ev.P_drive == pytest.approx(tq * dphi, rel=1e-9)
+    d_ = mech.spec.drives[0]
+    assert mech.joint_drive_torque(d_, 0.0, dphi) == pytest.approx(tq, rel=1e-12)
+    np.testing.assert_allclose(mech.joint_state(d_, 0.0, q, v), [phi, dphi], rtol=1e-12)
+    # past its range [-1, 1] rad: AnalysisError naming the drive and time
+    mech.check_range(ev, 0.0)
+    q2 = q.copy()
+    q2[2] = rho * 1.2
+    ev2 = mech.evaluate(0.5, q2, v, taut)
+    with pytest.raises(AnalysisError) as exc:
+        mech.check_range(ev2, 0.5)
+    assert "drive 'd'" in str(exc.value) and "68.7549 deg" in str(exc.value)
+
+
+def test_inextensible_ropes_with_a_joint_coordinate_are_refused():
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(ARM, "  duration: 2\n  drives:\n    d: {hinge: luff, free: true}\n",
+                    "{rope_elasticity: false}")
+    assert exc.value.entry == "effects.rope_elasticity"
+
+
+# ----------------------------------------------------------------- errors
+
+def test_errors_name_their_entries():
+    # a load that no rope holds in the geometry: not a static equilibrium
+    off = WINCH.replace("H: [0, 0, 30]", "H: [3, 0, 30]")
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(off, "  duration: 1\n")
+    assert exc.value.entry == "nodes.H" and "static equilibrium" in str(exc.value)
+    # a free arm whose stay runs along it (no moment about the hinge)
+    loose = ARM.replace("P: [0, 0, 14]", "P: [8, 0, 10]").replace(
+        "masses: {H: 300}\n", "").replace("  hoist: {EA: 1.0e8, path: [T, H]}\n", "")
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(loose, "  duration: 2\n  drives:\n    d: {hinge: luff, free: true}\n")
+    assert exc.value.entry == "analysis.drives.d" and "luff" in str(exc.value)
+    # a mass on no rope
+    lone = SPRING.replace("springs:\n  - {name: s, type: axial, nodes: [A, H], "
+                          "stiffness: 4.0e5, psi: 0.4}\n",
+                          "ropes:\n  r: {EA: 1.0e6, path: [A, B]}\n").replace(
+        "  H: [0, 0, 5]\n", "  H: [0, 0, 5]\n  B: [0, 0, 3]\n").replace(
+        "masses: {H: 200}", "masses: {H: 200, B: 10}")
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(lone, "  duration: 1\n")
+    assert exc.value.entry == "masses.H"
