@@ -362,11 +362,15 @@ def test_torque_and_motor_drums_as_coordinates(kind):
     assert ev.P_drive == pytest.approx(tq * v[2], rel=RTOL)
     # paying out past the reserve (theta R per radian, 100 m) stops the run
     mech.check_range(ev, 1.0)
+    for th in (-190.0, -200.0):          # 95 m, exactly 100 m paid out: still inside
+        ev.theta[0] = th
+        mech.check_range(ev, 1.0)
     ev.theta[0] = -100.0 / R - 1.0
     with pytest.raises(AnalysisError) as exc:
         mech.check_range(ev, 2.5)
     assert "drum 'hoist'" in str(exc.value) and "t = 2.5 s" in str(exc.value)
-    assert "rope_reserve 100 m" in str(exc.value)
+    assert "rope_reserve 100 m" in str(exc.value) and "paid out 100.5 m" in str(exc.value)
+    assert f"drive {kind} too weak" in str(exc.value)
 
 
 # ----------------------------------------------------------------- slewing
@@ -512,11 +516,74 @@ def test_free_arm_hangs_on_its_stay_by_the_moment_balance():
     np.testing.assert_allclose(mech.M, [ML, ML, IO / 16], rtol=1e-12)
 
 
+def _arm_force(mech, q, v, taut, tq_of):
+    """Hand generalised forces of the arm scene at (q, v): the load (x, z) on its rope
+    from the tip T, the arm's coordinate u = rho phi by moments about O (y axis):
+    gravity 2 cos(phi) m_b g, the ropes' forces at T (r_z F_x - r_x F_z, r = T - O),
+    the drive's torque tq_of(phi') - all over rho."""
+    rho = 4.0
+    phi, dphi = q[2] / rho, v[2] / rho
+    c, s = np.cos(phi), np.sin(phi)
+    Tn = np.array([4 * c, 10 - 4 * s])
+    EA = np.array([1.0e8, 5.0e8])
+    out = np.zeros(3)
+    Mu = 2 * c * MB * G + tq_of(dphi)
+    out[1] -= ML * G
+    for k, (a, b) in enumerate([(Tn, q[:2]), (np.array([0.0, 14.0]), Tn)]):
+        d = b - a
+        l = np.linalg.norm(d)
+        S = EA[k] * np.log(l / mech.L0_ref[k]) if taut[k] else 0.0
+        e = d / l
+        if k == 0:
+            out[:2] -= S * e                      # on the load (b = H)
+            Ft = S * e                            # on T (its a end)
+        else:
+            Ft = -S * e                           # on T (its b end)
+        Mu += (-4 * s) * Ft[0] - (4 * c) * Ft[1]
+    out[2] = Mu / rho
+    return out
+
+
+def _arm_tangents(mech, q, v, taut, tq_of, h=1e-6):
+    K = np.zeros((3, 3))
+    for j in range(3):
+        dq = np.zeros(3)
+        dq[j] = h
+        K[:, j] = -(_arm_force(mech, q + dq, v, taut, tq_of)
+                    - _arm_force(mech, q - dq, v, taut, tq_of)) / (2 * h)
+    dv = np.array([0.0, 0.0, h])
+    C = np.zeros((3, 3))
+    C[:, 2] = -(_arm_force(mech, q, v + dv, taut, tq_of)
+                - _arm_force(mech, q, v - dv, taut, tq_of)) / (2 * h)
+    return K, C
+
+
+def test_free_arm_forces_by_moments():
+    mech = _arm("free: true")
+    rho = 4.0
+    np.testing.assert_allclose(mech.L0_ref, [5.0 * np.exp(-ML * G / 1.0e8),
+                                             np.sqrt(32) * np.exp(-mech.S0[1] / 5.0e8)],
+                               rtol=1e-12)
+    q = np.array([4.0, 5.0, rho * 0.05])
+    v = np.array([0.1, 0.0, rho * 0.3])
+    taut = np.array([True, True])
+    ev = mech.evaluate(0.0, q, v, taut)
+    F = _arm_force(mech, q, v, taut, lambda w: 0.0)
+    np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * np.abs(F).max())
+    K, C = _arm_tangents(mech, q, v, taut, lambda w: 0.0)
+    np.testing.assert_allclose(ev.K, K, rtol=1e-6, atol=1e-6 * np.abs(K).max())
+    np.testing.assert_allclose(ev.C, 0.0, atol=1e-9)
+    np.testing.assert_allclose(ev.joint_torque, [0.0], atol=0)
+    d_ = mech.spec.drives[0]
+    assert mech.joint_drive_torque(d_, 0.0, 0.3) == 0.0
+
+
 @pytest.mark.parametrize("kind", ["torque", "motor"])
 def test_held_arm_torque_motor_and_its_warning(kind):
     """A torque- or motor-driven arm is held at rest: it carries the whole moment
-    (joint_hold = -(2 m_b + 4 m_l) g), the stay is at 0 N and the run warns."""
-    drive = "torque: -5000" if kind == "torque" else \
+    (joint_hold = -(2 m_b + 4 m_l) g), the stay is at 0 N and the run warns. The
+    torque is a table (-5000 N m at t = 0 to -3000 at t = 1: -4000 at 0.5 s)."""
+    drive = "torque: [[0, -5000], [1, -3000]]" if kind == "torque" else \
         "gear_ratio: 30, rotor_inertia: 0.2, motor: {stall_torque: 400, synchronous_speed: 150}"
     mech = _arm(drive)
     hold = -(2 * MB + 4 * ML) * G
@@ -527,42 +594,38 @@ def test_held_arm_torque_motor_and_its_warning(kind):
     rot = 0.0 if kind == "torque" else 0.2 * 30 ** 2
     np.testing.assert_allclose(mech.M, [ML, ML, (IO + rot) / 16], rtol=1e-12)
     # a state: the arm turned by phi, turning at dphi; the load at rest
-    rho, phi, dphi = 4.0, 0.1, 0.3
+    rho, phi, dphi, t = 4.0, 0.1, 0.3, 0.5
     q = np.array([4.0, 5.0, rho * phi])
     v = np.array([0.0, 0.0, rho * dphi])
     taut = mech.taut0.copy()
-    ev = mech.evaluate(0.0, q, v, taut)
-    c, s = np.cos(phi), np.sin(phi)
-    Tn = np.array([4 * c, 10 - 4 * s])
-    d = np.array([4.0, 5.0]) - Tn
-    l = np.linalg.norm(d)
-    S = 1.0e8 * np.log(l / mech.L0_ref[0])
-    e = d / l
-    tq = -5000.0 if kind == "torque" else 30 * 400 * (1 - 30 * dphi / 150)
-    # moment of the rope on T about y: r_z F_x - r_x F_z, r = T - O
-    rz, rx = -4 * s, 4 * c
-    Mrope = rz * S * e[0] - rx * S * e[1]
-    Mg = 2 * c * MB * G
-    Fu = (tq + Mg + Mrope) / rho
-    # the stay is slack at rest (0 N) and stays so unless stretched: here it is shorter
-    np.testing.assert_allclose(ev.F[:2], np.array([0, -ML * G]) - S * e, rtol=1e-9)
-    assert ev.F[2] == pytest.approx(Fu, rel=1e-9)
+    assert taut.tolist() == [True, False]
+    ev = mech.evaluate(t, q, v, taut)
+
+    def tq_of(w):
+        return -4000.0 if kind == "torque" else 30 * 400 * (1 - 30 * w / 150)
+    tq = tq_of(dphi)
+    F = _arm_force(mech, q, v, taut, tq_of)
+    np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * np.abs(F).max())
+    K, C = _arm_tangents(mech, q, v, taut, tq_of)
+    np.testing.assert_allclose(ev.K, K, rtol=1e-6, atol=1e-6 * np.abs(K).max())
+    # (C by differences in u' of a force of 1e5 N: round-off 1e-16 1e5 / 1e-6 ~ 1e-5 each)
+    np.testing.assert_allclose(ev.C, C, rtol=1e-5, atol=1e-9)
     np.testing.assert_allclose(ev.joint_torque, [tq], rtol=1e-12)
     np.testing.assert_allclose(ev.MJ, [[(IO + rot) / 16]], rtol=1e-12)
     np.testing.assert_allclose(mech.mass_matrix(ev)[2, 2], (IO + rot) / 16, rtol=1e-12)
-    np.testing.assert_allclose(mech.joint_accel(ev), [Fu / ((IO + rot) / 16)], rtol=1e-9)
+    np.testing.assert_allclose(mech.joint_accel(ev), [F[2] / ((IO + rot) / 16)], rtol=1e-9)
     if kind == "motor":
         # dF_u/du' = tq'(dphi) / rho^2 = -30^2 400/150 / 16
         assert ev.C[2, 2] == pytest.approx(30 * 30 * 400 / 150 / 16, rel=1e-9)
     # energy: 1/2 (I_O + rotor) dphi^2, the arm's weight at its com
     T, Vg, U = mech.energy(ev, taut)
     assert T == pytest.approx(0.5 * (IO + rot) * dphi ** 2, rel=1e-9)
-    assert Vg == pytest.approx(MB * G * (10 - 2 * s) + ML * G * 5.0, rel=1e-9)
+    assert Vg == pytest.approx(MB * G * (10 - 2 * np.sin(phi)) + ML * G * 5.0, rel=1e-9)
     # power: the drive's torque times dphi (the load at rest, no prescribed motion)
     assert ev.P_drive == pytest.approx(tq * dphi, rel=1e-9)
     d_ = mech.spec.drives[0]
-    assert mech.joint_drive_torque(d_, 0.0, dphi) == pytest.approx(tq, rel=1e-12)
-    np.testing.assert_allclose(mech.joint_state(d_, 0.0, q, v), [phi, dphi], rtol=1e-12)
+    assert mech.joint_drive_torque(d_, t, dphi) == pytest.approx(tq, rel=1e-12)
+    np.testing.assert_allclose(mech.joint_state(d_, t, q, v), [phi, dphi], rtol=1e-12)
     # past its range [-1, 1] rad: AnalysisError naming the drive and time
     mech.check_range(ev, 0.0)
     q2 = q.copy()
@@ -603,3 +666,91 @@ def test_errors_name_their_entries():
     with pytest.raises(ModelError) as exc:
         _scene_mech(lone, "  duration: 1\n")
     assert exc.value.entry == "masses.H"
+
+
+def test_two_joint_coordinates_slewing_torque_and_trolley_motor():
+    """A slewing torque and a trolley motor (two coordinates after the load's three):
+    at rest at t = 0 the load hangs in equilibrium, the vertical axis and the horizontal
+    slider see no weight, so F = (0, 0, 0, M / rho_1, F_t), F_t = gear x stall = 500 N;
+    rho_1 = 10 m (the jib's com, the farthest point from the axis); the inertias about
+    the axis I_zz + m r^2 (jib 1e5 + 5000 10^2, trolley 10 + 500 6^2) over rho_1^2, the
+    trolley's 500 kg + the rotor's 0.01 x 50^2 along its slider."""
+    mech = _scene_mech(SLEWING, "  duration: 2\n  drives:\n    s: {hinge: slew, torque: 2.0e4}\n"
+                       "    t: {slider: travel, gear_ratio: 50, rotor_inertia: 0.01, "
+                       "motor: {stall_torque: 10, synchronous_speed: 100}}\n")
+    assert mech.nJ == 2 and mech.nc == 3 and mech.n == 5
+    assert [jc["rho"] for jc in mech.jc] == pytest.approx([10.0, 1.0])
+    np.testing.assert_allclose(mech.joint_hold, [0.0, 0.0], atol=1e-6)
+    I_ax = 1e5 + 5000 * 100 + 10 + 500 * 36
+    ev = mech.evaluate(0.0, mech.q0, np.zeros(5), mech.taut0)
+    np.testing.assert_allclose(ev.F, [0, 0, 0, 2.0e4 / 10, 500.0], atol=1e-6)
+    np.testing.assert_allclose(ev.joint_torque, [2.0e4, 500.0], rtol=1e-12)
+    np.testing.assert_allclose(ev.MJ, np.diag([I_ax / 100, 525.0]), rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(mech.M[:3], [1000.0] * 3, rtol=0)
+    # speeds: the motor's force 500 (1 - 50 s'/100); kinetic energy
+    # 1/2 I_ax phi'^2 + 1/2 (500 + rotor) s'^2 + 1/2 m_load |v|^2 (the trolley's radial
+    # speed is orthogonal to its slewing speed)
+    v = np.array([0.1, -0.2, 0.05, 10 * 0.1, 0.4])
+    ev = mech.evaluate(0.0, mech.q0, v, mech.taut0)
+    # along the slider: the motor and the centrifugal force m_t r phi'^2 (r = 6 m)
+    assert ev.F[4] == pytest.approx(500.0 * (1 - 50 * 0.4 / 100) + 500 * 6 * 0.1 ** 2,
+                                    rel=1e-9)
+    T = mech.energy(ev, mech.taut0)[0]
+    assert T == pytest.approx(0.5 * I_ax * 0.01 + 0.5 * 525.0 * 0.16
+                              + 0.5 * 1000 * (v[:3] @ v[:3]), rel=1e-9)
+    q = mech.q0.copy()
+    q[3:] = [10 * 0.2, 0.7]
+    ds, dt = mech.spec.drives
+    np.testing.assert_allclose(mech.joint_state(ds, 0.0, q, v), [0.2, 0.1], rtol=1e-12)
+    np.testing.assert_allclose(mech.joint_state(dt, 0.0, q, v), [0.7, 0.4], rtol=1e-12)
+    X = mech.place(0.0, q, v)[0]
+    np.testing.assert_allclose(X[2], [6.7 * np.cos(0.2), 6.7 * np.sin(0.2), 30], atol=1e-12)
+    # the trolley's range [-2, 20] m (the slewing joint has none): inside by less than
+    # 1e-9 passes, beyond stops the run naming it
+    for s_ in (20 + 0.5e-9, -2 - 0.5e-9, 20.0, -2.0):
+        q[4] = s_
+        mech.check_range(mech.evaluate(0.0, q, v, mech.taut0), 0.0)
+    for s_, where in ((25.0, "reached 25 m"), (-2.5, "reached -2.5 m")):
+        q[4] = s_
+        with pytest.raises(AnalysisError) as exc:
+            mech.check_range(mech.evaluate(0.0, q, v, mech.taut0), 0.75)
+        msg = str(exc.value)
+        assert where in msg and "[-2, 20] m" in msg and "drive 't'" in msg
+        assert "a motor that does not stop it" in msg and "t = 0.75 s" in msg
+
+
+def test_a_prescribed_slewing_feeds_power_into_a_trolley_coordinate():
+    """Slewing at w (a profile) with the trolley a force coordinate: the drives' power is
+    the force times s' plus what the slewing does on the trolley, int (x'' - g) . x_t dm
+    with x_t = w x r the velocity with the coordinate held: the Coriolis acceleration
+    2 w s' (tangential) times r w, so 2 m_t r w^2 s' (the centripetal and radial terms
+    are orthogonal to x_t, the trolley's own rotation at constant w does no work).
+    The load hangs vertically below the trolley: its rope does no work on x_t."""
+    w = 0.3
+    mech = _scene_mech(SLEWING, f"  duration: 2\n  drives:\n    s: {{hinge: slew, profile: "
+                       f"{{type: table, speed: [[0, {w}]]}}}}\n"
+                       "    t: {slider: travel, force: 300}\n")
+    assert mech.nJ == 1
+    t, s_, ds_ = 1.0, 0.5, 0.4
+    ph = w * t
+    r = 6.0 + s_
+    K = np.array([r * np.cos(ph), r * np.sin(ph), 30.0])
+    q = np.array([K[0], K[1], 20.0, s_])
+    v = np.array([0.0, 0.0, 0.0, ds_])
+    ev = mech.evaluate(t, q, v, mech.taut0)
+    assert ev.P_drive == pytest.approx(300 * ds_ + 2 * 500 * r * w * w * ds_, rel=1e-9)
+    np.testing.assert_allclose(ev.X[2], K, atol=1e-12)
+    # a prescribed drive's state and torque: its motion, nan
+    d_ = mech.spec.drives[0]
+    np.testing.assert_allclose(mech.joint_state(d_, t, q, v), [ph, w], rtol=1e-12)
+    assert np.isnan(mech.joint_drive_torque(d_, t, w))
+
+
+def test_inextensible_ropes_take_the_reference_length():
+    """rope_elasticity: false: L0_ref = L_ref and lambda_ref = 1 (a drum winds R theta)."""
+    mech = _scene_mech(TROLLEY.replace("MASS", "1000").replace("EAVAL", "1.0e7"),
+                       TROLLEY_DRIVE, "{rope_elasticity: false}")
+    assert mech.inextensible
+    np.testing.assert_allclose(mech.lam_ref, [1.0], rtol=0)
+    np.testing.assert_allclose(mech.L0_ref, [10.0], rtol=1e-12)
+    np.testing.assert_allclose(mech.S0, [1000 * G], rtol=1e-9)
