@@ -184,6 +184,7 @@ def test_trolley_pendulum_forces_and_tangent_by_hand(t):
     # slack: no force, no energy
     evs = mech.evaluate(t, q, v, np.array([False]))
     np.testing.assert_allclose(evs.F, [0, -m * G], atol=0)
+    np.testing.assert_allclose(evs.K, 0.0, atol=0)
     assert mech.energy(evs, np.array([False]))[2] == 0.0
     # mass matrix
     np.testing.assert_allclose(mech.mass_matrix(ev), np.diag([m, m]), atol=0)
@@ -212,6 +213,27 @@ def test_trolley_rope_dashpot_by_hand():
     # without damping asked for: none
     ev0 = mech.evaluate(t, q, v, taut, damping=False)
     np.testing.assert_allclose(ev0.Sd, [0.0], atol=0)
+    # a slack rope has no dashpot
+    evs = mech.evaluate(t, q, v, np.array([False]))
+    np.testing.assert_allclose(evs.Sd, [0.0], atol=0)
+    np.testing.assert_allclose(evs.F, [0, -m * G], atol=0)
+    np.testing.assert_allclose(evs.C, 0.0, atol=0)
+
+
+def test_soft_rope_dashpot_below_one_radian_per_second():
+    """A 1e4 kg load on 100 m of a soft rope (EA 5e5 N): w^2 = c/m = 0.5 / s^2 < 1, so
+    b = psi c / (2 pi w) with w = 0.707 (no floor at 1 rad/s)."""
+    text = ("cranefe: 1\nname: soft\nplane: xz\nnodes:\n  A: [0, 0, 100]\n  H: [0, 0, 0]\n"
+            "ground: [A]\nmasses: {H: 1.0e4}\nropes:\n  r: {EA: 5.0e5, psi: 0.3, path: [A, H]}\n")
+    mech = _scene_mech(text, "  duration: 1\n", "{damping: exact}")
+    q, v = np.array([0.0, 0.5]), np.array([0.0, -0.2])
+    ev = mech.evaluate(0.0, q, v, np.array([True]))
+    L = 99.5
+    c = 5.0e5 / L
+    w = np.sqrt(c / 1.0e4)
+    assert w < 1
+    b = 0.3 * c / (2 * np.pi * w)
+    np.testing.assert_allclose(ev.Sd, [b * 0.2], rtol=RTOL)      # e = (0, -1): e.v = 0.2
 
 
 def test_sway_off_the_load_follows_its_trolley():
@@ -313,10 +335,47 @@ def test_drum_profile_winds_rope_by_hand():
     mech.check_range(ev, t)
 
 
+def test_damped_rope_on_a_torque_drum_by_hand():
+    """damping: exact with the drum a coordinate: the rope's row g = (2 e, R) (two falls
+    and the drum), w^2 = c (4/m + R^2/J), b = psi c / (2 pi w), S_d = b g . v,
+    F = -(S + S_d) g + gravity + torque, C = b g g^T."""
+    m, EA, R, J, psi = 1000.0, 2.0e6, 0.5, 10.0, 0.2
+    mech = _scene_mech(WINCH, "  duration: 5\n  drives:\n    h: {drum: hoist, torque: 3000}\n",
+                       "{damping: exact}")
+    lam = np.exp(m * G / 2 / EA)
+    q, v = np.array([0.2, 30.1, 0.3]), np.array([0.05, 0.3, 0.7])
+    ev = mech.evaluate(1.0, q, v, np.array([True]))
+    l = np.hypot(q[0], 40 - q[1])
+    L = 23.5 - 20 + 2 * l
+    L0 = (23.5 - R * q[2]) / lam
+    S = EA * np.log(L / L0)
+    g = np.array([2 * q[0] / l, 2 * (q[1] - 40) / l, R])
+    c = EA / L
+    b = psi * c / (2 * np.pi * np.sqrt(c * (4 / m + R * R / J)))
+    Sd = b * (g @ v)
+    np.testing.assert_allclose(ev.Sd, [Sd], rtol=RTOL)
+    np.testing.assert_allclose(ev.F, np.array([0, -m * G, 3000.0]) - (S + Sd) * g, rtol=RTOL)
+    np.testing.assert_allclose(ev.C, b * np.outer(g, g), rtol=RTOL, atol=1e-12 * b)
+
+
+def test_a_drum_winds_only_its_own_rope():
+    """Two ropes, the first on the drum: the second's L0 does not change with theta."""
+    text = WINCH.replace("  H: [0, 0, 30]\n", "  H: [0, 0, 30]\n  B: [0, 0, 25]\n").replace(
+        "masses: {H: 1000}", "masses: {H: 1000, B: 500}") + \
+        "  sling: {EA: 1.0e6, path: [H, B]}\n"
+    mech = _scene_mech(text, "  duration: 5\n  drives:\n    h: {drum: hoist, profile: "
+                       "{type: table, speed: [[0, 0.4]]}}\n")
+    S0 = np.array([1500 * G / 2, 500 * G])
+    np.testing.assert_allclose(mech.S0, S0, rtol=RTOL)
+    lam = np.exp(S0 / np.array([2.0e6, 1.0e6]))
+    L0 = mech.unstretched(np.array([0.6]))
+    np.testing.assert_allclose(L0, [(23.5 - 0.5 * 0.6) / lam[0], 5.0 / lam[1]], rtol=RTOL)
+
+
 @pytest.mark.parametrize("kind", ["torque", "motor"])
 def test_torque_and_motor_drums_as_coordinates(kind):
     m, EA, R, J = 1000.0, 2.0e6, 0.5, 10.0
-    drive = "torque: 3000" if kind == "torque" else \
+    drive = "torque: [[0, 2000], [2, 4000]]" if kind == "torque" else \
         "motor: {stall_torque: 400, synchronous_speed: 157}"
     gear = "" if kind == "torque" else ", motor: {rotor_inertia: 0.2, gear_ratio: 20}"
     text = WINCH.replace("rope_reserve: 100", "rope_reserve: 100" + gear)
@@ -336,7 +395,7 @@ def test_torque_and_motor_drums_as_coordinates(kind):
         S = EA * np.log(L / L0)
         e = np.array([x, z - 40]) / l
         if kind == "torque":
-            tq = 3000.0
+            tq = 3000.0                  # the table at t = 1 s
         else:
             tq = 20 * 400 * (1 - 20 * om / 157)
         return np.array([*(np.array([0, -m * G]) - 2 * S * e), tq - R * S]), tq
@@ -360,6 +419,10 @@ def test_torque_and_motor_drums_as_coordinates(kind):
     T = mech.energy(ev, np.array([True]))[0]
     assert T == pytest.approx(0.5 * m * (v[:2] @ v[:2]) + 0.5 * J * v[2] ** 2, rel=RTOL)
     assert ev.P_drive == pytest.approx(tq * v[2], rel=RTOL)
+    # a slack rope: no force on the drum, no stiffness
+    evs = mech.evaluate(1.0, q, v, np.array([False]))
+    np.testing.assert_allclose(evs.F, [0, -m * G, tq], rtol=RTOL)
+    np.testing.assert_allclose(evs.K, 0.0, atol=0)
     # paying out past the reserve (theta R per radian, 100 m) stops the run
     mech.check_range(ev, 1.0)
     for th in (-190.0, -200.0):          # 95 m, exactly 100 m paid out: still inside
@@ -493,7 +556,7 @@ joints:
   - {name: luff, type: hinge, bodies: [ground, arm], at: O, axis: [0, 1, 0],
      range: [-1, 1]}
 ropes:
-  hoist: {EA: 1.0e8, path: [T, H]}
+  hoist: {EA: 1.0e8, psi: 0.2, path: [T, H]}
   stay: {EA: 5.0e8, path: [P, T]}
 """
 MB, ML, IO = 200.0, 300.0, 50.0 + 200.0 * 4.0     # arm mass, load, inertia about O
@@ -653,7 +716,7 @@ def test_errors_name_their_entries():
     assert exc.value.entry == "nodes.H" and "static equilibrium" in str(exc.value)
     # a free arm whose stay runs along it (no moment about the hinge)
     loose = ARM.replace("P: [0, 0, 14]", "P: [8, 0, 10]").replace(
-        "masses: {H: 300}\n", "").replace("  hoist: {EA: 1.0e8, path: [T, H]}\n", "")
+        "masses: {H: 300}\n", "").replace("  hoist: {EA: 1.0e8, psi: 0.2, path: [T, H]}\n", "")
     with pytest.raises(ModelError) as exc:
         _scene_mech(loose, "  duration: 2\n  drives:\n    d: {hinge: luff, free: true}\n")
     assert exc.value.entry == "analysis.drives.d" and "luff" in str(exc.value)
@@ -754,3 +817,78 @@ def test_inextensible_ropes_take_the_reference_length():
     np.testing.assert_allclose(mech.lam_ref, [1.0], rtol=0)
     np.testing.assert_allclose(mech.L0_ref, [10.0], rtol=1e-12)
     np.testing.assert_allclose(mech.S0, [1000 * G], rtol=1e-9)
+
+
+def test_damped_motor_arm_and_its_poses():
+    """damping: exact on the arm's load rope T-H: its row G = (e_x, e_z, -e . dT/du) with
+    dT/du = (-sin phi, -cos phi) (u = 4 phi), w^2 = c (G_x^2/m + G_z^2/m + G_u^2/M_J),
+    M_J = (I_O + rotor) / rho^2 (the joint's mass with the others held); the motor's C
+    and the dashpot's b G G^T add. poses(t, {drive: (phi, phi')}) puts the tip at
+    (4 cos phi, 10 - 4 sin phi) and its acceleration (phi'' = 0) is centripetal."""
+    mech = _scene_mech(ARM, "  duration: 2\n  drives:\n    d: {hinge: luff, gear_ratio: 30, "
+                       "rotor_inertia: 0.2, motor: {stall_torque: 400, "
+                       "synchronous_speed: 150}}\n", "{damping: exact}")
+    rho, phi, dphi = 4.0, 0.1, 0.3
+    MJ = (IO + 0.2 * 900) / 16
+    q = np.array([4.2, 5.0, rho * phi])
+    v = np.array([0.1, -0.2, rho * dphi])
+    taut = mech.taut0.copy()
+    ev = mech.evaluate(0.0, q, v, taut)
+    c_, s_ = np.cos(phi), np.sin(phi)
+    Tn = np.array([4 * c_, 10 - 4 * s_])
+    d = q[:2] - Tn
+    l = np.linalg.norm(d)
+    e = d / l
+    Gr = np.array([e[0], e[1], -(e @ np.array([-s_, -c_]))])
+    c = 1.0e8 / l
+    b = 0.2 * c / (2 * np.pi * np.sqrt(c * (Gr[0] ** 2 / ML + Gr[1] ** 2 / ML + Gr[2] ** 2 / MJ)))
+    Sd = b * (Gr @ v)
+    np.testing.assert_allclose(ev.Sd, [Sd, 0.0], rtol=1e-9, atol=1e-12)
+    F = _arm_force(mech, q, v, taut, lambda w: 30 * 400 * (1 - 30 * w / 150)) - Sd * Gr
+    np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * np.abs(F).max())
+    C = b * np.outer(Gr, Gr)
+    C[2, 2] += 30 * 30 * 400 / 150 / 16
+    np.testing.assert_allclose(ev.C, C, rtol=1e-9, atol=1e-9 * np.abs(C).max())
+    mot, X = mech.poses(0.0, {"d": (phi, dphi)})
+    np.testing.assert_allclose(X[1], [4 * c_, 0, 10 - 4 * s_], atol=1e-12)
+    arm = mech.jc[0]["child"]
+    R, dR, ddR, p, dp, ddp = mot[arm]
+    X1 = np.array([4.0, 0, 10])
+    np.testing.assert_allclose(dR @ X1 + dp, dphi * 4 * np.array([-s_, 0, -c_]), atol=1e-12)
+    np.testing.assert_allclose(ddR @ X1 + ddp, -dphi ** 2 * 4 * np.array([c_, 0, -s_]),
+                               atol=1e-12)
+
+
+def test_two_springs_and_a_rope_share_the_load():
+    """A load on a vertical rope (c = EA/L) and two springs at 45 deg (k each): the static
+    state shares the weight by stiffness, u = m g / (c + 2 k cos^2), S0 = c u,
+    N0 = k cos u; at a displaced state each spring's N = N0 + k (d - d_ref), the energy
+    the rope's Hencky energy plus sum N0 (d - d_ref) + k (d - d_ref)^2 / 2."""
+    m, k, EA = 500.0, 2.0e5, 1.0e6
+    text = ("cranefe: 1\nname: shared\nnodes:\n  A: [-5, 0, 10]\n  B: [5, 0, 10]\n"
+            "  C: [0, 0, 10]\n  H: [0, 0, 5]\nground: [A, B, C]\nmasses: {H: 500}\n"
+            "springs:\n  - {name: a, type: axial, nodes: [A, H], stiffness: 2.0e5}\n"
+            "  - {name: b, type: axial, nodes: [B, H], stiffness: 2.0e5}\n"
+            "ropes:\n  r: {EA: 1.0e6, path: [C, H]}\n")
+    mech = _scene_mech(text, "  duration: 1\n")
+    cs = 1 / np.sqrt(2)
+    u = m * G / (EA / 5 + 2 * k * cs * cs)
+    np.testing.assert_allclose(mech.S0, [EA / 5 * u], rtol=1e-9)
+    np.testing.assert_allclose(mech.N_ref, [k * cs * u] * 2, rtol=1e-9)
+    q = np.array([0.3, 0.1, 4.9])
+    ev = mech.evaluate(0.0, q, np.zeros(3), mech.taut0)
+    F = np.array([0, 0, -m * G])
+    Ue = 0.0
+    for a in ([-5, 0, 10], [5, 0, 10]):
+        dv = q - a
+        dl = np.linalg.norm(dv)
+        N = k * cs * u + k * (dl - np.sqrt(50))
+        F -= N * dv / dl
+        Ue += k * cs * u * (dl - np.sqrt(50)) + 0.5 * k * (dl - np.sqrt(50)) ** 2
+    dv = q - [0, 0, 10]
+    L = np.linalg.norm(dv)
+    L0 = 5 * np.exp(-EA / 5 * u / EA)
+    F -= EA * np.log(L / L0) * dv / L
+    Ue += EA * (L * np.log(L / L0) - L + L0)
+    np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * m * G)
+    assert mech.energy(ev, mech.taut0)[2] == pytest.approx(Ue, rel=1e-7)
