@@ -301,7 +301,7 @@ def test_a_dropped_load_pulls_its_rope_taut_at_the_free_fall_time():
     the taut event at sqrt(2 0.2 / g) (the stretch crosses zero there: located by the
     Illinois search to ~1e-12 s; the step's error in the free fall is zero: a constant
     acceleration is integrated exactly by the trapezoidal rule)."""
-    model = _scene("drop", DROP, "  duration: 0.3\n  tolerance: 1.0e-8\n",
+    model = _scene("drop", DROP, "  duration: 0.22\n  tolerance: 1.0e-8\n",
                    "{sway: false}")
     mech = Mechanism(model, parse(model))
     L0 = mech.L0_ref[0]
