@@ -370,6 +370,28 @@ def test_a_drum_winds_only_its_own_rope():
     lam = np.exp(S0 / np.array([2.0e6, 1.0e6]))
     L0 = mech.unstretched(np.array([0.6]))
     np.testing.assert_allclose(L0, [(23.5 - 0.5 * 0.6) / lam[0], 5.0 / lam[1]], rtol=RTOL)
+    # forces at a displaced state: H on two falls and the sling, B on the sling
+    t = 1.5
+    q = np.array([0.1, 29.9, -0.2, 24.8])        # H (x, z), B (x, z)
+    ev = mech.evaluate(t, q, np.zeros(4), np.array([True, True]))
+    H, B = q[:2], q[2:]
+    l1 = np.hypot(*H - [0, 40])
+    e1 = (H - [0, 40]) / l1
+    S1 = 2.0e6 * np.log((3.5 + 2 * l1) / ((23.5 - 0.5 * 0.4 * t) / lam[0]))
+    l2 = np.hypot(*B - H)
+    e2 = (B - H) / l2
+    S2 = 1.0e6 * np.log(l2 / (5.0 / lam[1]))
+    F = np.concatenate([[0, -1000 * G] - 2 * S1 * e1 + S2 * e2, [0, -500 * G] - S2 * e2])
+    np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * 1000 * G)
+
+
+def test_without_gravity_the_vertical_is_z():
+    """gravity [0, 0, 0]: 'up' falls back to +z (a sway-off load's coordinate)."""
+    text = SPRING.replace("name: spring\n", "name: spring\ngravity: [0, 0, 0]\n")
+    mech = _scene_mech(text, "  duration: 1\n", "{sway: false}")
+    np.testing.assert_allclose(mech.up, [0, 0, 1], atol=0)
+    np.testing.assert_allclose(mech.E[:, 0], [0, 0, 1], atol=0)
+    np.testing.assert_allclose(mech.N_ref, [0.0], atol=0)
 
 
 @pytest.mark.parametrize("kind", ["torque", "motor"])
