@@ -914,3 +914,75 @@ def test_two_springs_and_a_rope_share_the_load():
     Ue += EA * (L * np.log(L / L0) - L + L0)
     np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * m * G)
     assert mech.energy(ev, mech.taut0)[2] == pytest.approx(Ue, rel=1e-7)
+
+
+def test_a_joint_listed_child_first_moves_the_other_way():
+    """bodies: [trolley, ground]: the drive moves bodies[1] relative to bodies[0], so the
+    trolley (the child in the tree) moves by -s."""
+    text = TROLLEY.replace("bodies: [ground, trolley]", "bodies: [trolley, ground]").replace(
+        "MASS", "1000").replace("EAVAL", "1.0e7")
+    mech = _scene_mech(text, TROLLEY_DRIVE)
+    for t in (0.5, 2.5):
+        X, V, A, _ = mech.kinematics(t)
+        s, ds, dds = trolley_xs(t)
+        np.testing.assert_allclose([X[0, 0], V[0, 0], A[0, 0]], [-s, -ds, -dds], atol=1e-12)
+
+
+LUFF_ON_SLEW = """cranefe: 1
+name: boom on a slewing tower
+nodes:
+  O: [0, 0, 0]
+  P: [1, 0, 20]
+  T: [21, 0, 20]
+  H: [21, 0, 10]
+ground: [O]
+masses: {H: 1000}
+bodies:
+  tower: {mass: 1000, com: [0, 0, 10], inertia: [10, 10, 10], nodes: [O]}
+  boom: {mass: 500, com: [11, 0, 20], inertia: [10, 10, 10], nodes: [P, T]}
+joints:
+  - {name: slew, type: hinge, bodies: [ground, tower], at: O, axis: [0, 0, 1]}
+  - {name: luff, type: hinge, bodies: [tower, boom], at: P, axis: [0, -1, 0]}
+ropes:
+  hoist: {EA: 1.0e8, path: [T, H]}
+"""
+
+
+def test_a_hinge_on_a_slewing_body_composes_by_hand():
+    """The boom tip T = Rz(phi) [P + R_(-y)(theta) (T0 - P)] (luffing about the tower's
+    -y axis through P, which turns with the tower); its velocity and acceleration by
+    central differences of that hand position (h = 1e-4 s: truncation h^2/6 |x'''|
+    ~ 1e-8 m/s, round-off 1e-16 x 20 / h^2 ~ 2e-7 m/s^2; bounds 1e-6 and 1e-5)."""
+    w_s, w_l = 0.2, 0.1
+    mech = _scene_mech(LUFF_ON_SLEW, "  duration: 3\n  drives:\n    s: {hinge: slew, profile: "
+                       f"{{type: table, speed: [[0, {w_s}]]}}}}\n    l: {{hinge: luff, profile: "
+                       f"{{type: table, speed: [[0, {w_l}], [2, {2 * w_l}]]}}}}\n")
+
+    def tip(t):
+        ph = w_s * t
+        th = w_l * t + (w_l / 2) * t * t / 2 if t < 2 else None
+        c, s = np.cos(th), np.sin(th)
+        # rotation by th about -y: x -> (x c, 0, x s) for a point along +x
+        d = np.array([20 * c, 0, 20 * s])
+        p = np.array([1.0, 0, 20]) + d
+        Rz = np.array([[np.cos(ph), -np.sin(ph), 0], [np.sin(ph), np.cos(ph), 0], [0, 0, 1]])
+        return Rz @ p
+    h = 1e-4
+    for t in (0.5, 1.5):
+        X, V, A, _ = mech.kinematics(t)
+        np.testing.assert_allclose(X[2], tip(t), atol=1e-12)
+        np.testing.assert_allclose(V[2], (tip(t + h) - tip(t - h)) / (2 * h), atol=1e-6)
+        np.testing.assert_allclose(A[2], (tip(t + h) - 2 * tip(t) + tip(t - h)) / h ** 2,
+                                   atol=1e-5)
+
+
+def test_sway_off_load_under_a_luffing_tip():
+    """sway: false under the arm's tip, the arm luffed by a profile: the load's horizontal
+    position follows the tip (x = 4 cos phi) and its height is its own coordinate."""
+    mech = _scene_mech(ARM, "  duration: 2\n  drives:\n    d: {hinge: luff, profile: "
+                       "{type: table, speed: [[0, 0.2]]}}\n", "{sway: false}")
+    t = 1.0
+    ph = 0.2 * t
+    X, V, th, om = mech.place(t, np.array([4.5]), np.array([0.3]))
+    np.testing.assert_allclose(X[3], [4 * np.cos(ph), 0, 4.5], atol=1e-12)
+    np.testing.assert_allclose(V[3], [-4 * np.sin(ph) * 0.2, 0, 0.3], atol=1e-12)
