@@ -594,6 +594,7 @@ def test_free_arm_hangs_on_its_stay_by_the_moment_balance():
     at T = (4, 0, 10) has the moment -4 S 4 / sqrt 32."""
     mech = _arm("free: true")
     assert mech.nJ == 1 and mech.n == 3
+    assert not [w for w in mech.warnings if "held like a drum" in w]
     stay = (2 * MB * G + 4 * ML * G) / (16 / np.sqrt(32))
     np.testing.assert_allclose(mech.S0, [ML * G, stay], rtol=1e-9)
     np.testing.assert_allclose(mech.joint_hold, [0.0], atol=1e-6)
@@ -674,8 +675,11 @@ def test_held_arm_torque_motor_and_its_warning(kind):
     hold = -(2 * MB + 4 * ML) * G
     np.testing.assert_allclose(mech.joint_hold, [hold], rtol=1e-9)
     np.testing.assert_allclose(mech.S0, [ML * G, 0.0], atol=1e-6)
-    assert any("drive 'd'" in w and "stay" in w and f"{hold:.6g}" in w
-               for w in mech.warnings), mech.warnings
+    warn = [w for w in mech.warnings if "held like a drum" in w]
+    assert len(warn) == 1 and "drive 'd'" in warn[0] and f"{hold:.6g} N m" in warn[0]
+    assert "rope(s) stay, which" in warn[0], warn      # the loaded hoist rope not listed
+    given = -5000.0 if kind == "torque" else 30 * 400.0          # the drive at t = 0
+    assert f"the drive gives {given:.6g} N m at t = 0" in warn[0]
     rot = 0.0 if kind == "torque" else 0.2 * 30 ** 2
     np.testing.assert_allclose(mech.M, [ML, ML, (IO + rot) / 16], rtol=1e-12)
     # a state: the arm turned by phi, turning at dphi; the load at rest
@@ -986,3 +990,23 @@ def test_sway_off_load_under_a_luffing_tip():
     X, V, th, om = mech.place(t, np.array([4.5]), np.array([0.3]))
     np.testing.assert_allclose(X[3], [4 * np.cos(ph), 0, 4.5], atol=1e-12)
     np.testing.assert_allclose(V[3], [-4 * np.sin(ph) * 0.2, 0, 0.3], atol=1e-12)
+
+
+def test_sway_off_load_rides_on_a_trolley_coordinate():
+    """sway: false under a trolley driven by a force: the load's horizontal inertia is
+    carried by the trolley's coordinate (M_J = 500 + 1000 kg), its height its own; the
+    kinetic energy 1/2 (m_t + m) s'^2 + 1/2 m z'^2, no separate guided energy."""
+    text = TROLLEY.replace("MASS", "1000").replace("EAVAL", "1.0e7")
+    mech = _scene_mech(text, "  duration: 2\n  drives:\n    f: {slider: travel, force: 300}\n",
+                       "{sway: false}")
+    assert mech.n == 2 and mech.guided_joint.tolist() == [True]
+    q, v = np.array([0.01, 0.4]), np.array([0.2, 0.3])
+    ev = mech.evaluate(0.0, q, v, mech.taut0)
+    np.testing.assert_allclose(ev.MJ, [[1500.0]], rtol=1e-12)
+    np.testing.assert_allclose(mech.M, [1000.0, 1500.0], rtol=1e-12)
+    np.testing.assert_allclose(ev.X[1], [0.4, 0, 0.01], atol=1e-12)
+    np.testing.assert_allclose(ev.V[1], [0.3, 0, 0.2], atol=1e-12)
+    assert ev.F[1] == pytest.approx(300.0, rel=1e-12)
+    T = mech.energy(ev, mech.taut0)[0]
+    assert T == pytest.approx(0.5 * 1500 * 0.09 + 0.5 * 1000 * 0.04, rel=1e-12)
+    assert ev.T_guided == 0.0
