@@ -312,6 +312,8 @@ def test_a_dropped_load_pulls_its_rope_taut_at_the_free_fall_time():
     assert taut[0] == pytest.approx(math.sqrt(2 * 0.2 / G), abs=1e-9)
     # the rope pulled taut: the load stopped and bounced below the taut point
     assert res.rope_force_max[0] > 100 * G
+    # no drive, no dashpot: an elastic rope's events add no work and dissipate nothing
+    assert res.energy["work_drives"] == 0.0 and res.energy["dissipated"] == 0.0
 
 
 # ----------------------------------------------------------------- joint coordinate
@@ -390,3 +392,16 @@ def test_step_limit_stops_the_run(monkeypatch):
         simulate(model, initial={"q": np.array([5.01]), "v": np.zeros(1)}, fast=False)
     assert "more than 5 steps" in str(exc.value)
     assert exc.value.result.status == 1
+
+
+def test_trolley_force_carries_a_guided_load_at_the_closed_form():
+    """sway: false, the trolley a force coordinate (300 N) carrying the load's horizontal
+    inertia: s'' = F / (m_t + m) = 0.2 m/s^2 exactly, s = 0.1 t^2; the load's height is
+    in equilibrium and stays (the rule integrates a constant acceleration exactly: 1e-9
+    is round-off over the steps)."""
+    model = _scene("guided", TROLLEY, "  duration: 1\n  tolerance: 1.0e-8\n  output_step: 0.1\n"
+                   "  drives:\n    f: {slider: travel, force: 300}\n", "{sway: false}")
+    res = simulate(model, fast=False)
+    np.testing.assert_allclose(res.drive_position[:, 0], 0.1 * res.times ** 2, atol=1e-9)
+    np.testing.assert_allclose(res.mass_position[:, 0, 2], 0.0, atol=1e-9)
+    np.testing.assert_allclose(res.mass_position[:, 0, 0], 0.1 * res.times ** 2, atol=1e-9)
