@@ -1010,3 +1010,47 @@ def test_sway_off_load_rides_on_a_trolley_coordinate():
     T = mech.energy(ev, mech.taut0)[0]
     assert T == pytest.approx(0.5 * 1500 * 0.09 + 0.5 * 1000 * 0.04, rel=1e-12)
     assert ev.T_guided == 0.0
+
+
+BRIDGE = """cranefe: 1
+name: trolley on a travelling bridge
+plane: xz
+nodes:
+  B: [0, 0, 10]
+  K: [1, 0, 10]
+  H: [1, 0, 0]
+masses: {H: 1000}
+bodies:
+  bridge: {mass: 2000, com: [0, 0, 10], inertia: [10, 10, 10], nodes: [B]}
+  trolley: {mass: 500, com: [1, 0, 10], inertia: [10, 10, 10], nodes: [K]}
+joints:
+  - {name: run, type: slider, bodies: [ground, bridge], at: B, axis: [1, 0, 0],
+     range: [-1, 20]}
+  - {name: travel, type: slider, bodies: [bridge, trolley], at: K, axis: [1, 0, 0],
+     range: [-5, 5]}
+ropes:
+  hoist: {EA: 1.0e7, path: [K, H]}
+"""
+
+
+def test_a_breakpoint_seen_from_the_left_by_a_trolley_coordinate():
+    """The bridge runs a trapezoid (acceleration 1 m/s^2 until t = 1 s, then 0); the
+    trolley on it is a force coordinate (300 N): along its slider F = 300 - m_t a_bridge
+    (the carried acceleration), so at t = 1 s from the left (left_at = 1) -200 N, from
+    the right 300 N. The load hangs straight below the trolley (no force along x)."""
+    mech = _scene_mech(BRIDGE, "  duration: 4\n  drives:\n    r: {slider: run, profile: "
+                       "{type: trapezoid, distance: 2, v_max: 1, a_max: 1}}\n"
+                       "    t: {slider: travel, force: 300}\n")
+    assert mech.nJ == 1 and mech.nc == 2
+    q = np.array([1.5, mech.q0[1], 0.0])            # the load below K at x = 0.5 + 1
+    v = np.array([1.0, 0.0, 0.0])                   # moving with the bridge
+    mech.left_at = 1.0
+    ev = mech.evaluate(1.0, q, v, mech.taut0)
+    assert ev.F[2] == pytest.approx(300 - 500 * 1.0, rel=1e-12)
+    mech.left_at = None
+    ev = mech.evaluate(1.0, q, v, mech.taut0)
+    assert ev.F[2] == pytest.approx(300.0, rel=1e-12)
+    ev = mech.evaluate(0.5, np.array([1.125, mech.q0[1], 0.0]), np.array([0.5, 0, 0]),
+                       mech.taut0)
+    assert ev.F[2] == pytest.approx(300 - 500 * 1.0, rel=1e-12)
+    np.testing.assert_allclose(ev.F[:2], 0.0, atol=1e-6)
