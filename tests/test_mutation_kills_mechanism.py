@@ -730,6 +730,36 @@ def test_inextensible_ropes_with_a_joint_coordinate_are_refused():
         _scene_mech(ARM, "  duration: 2\n  drives:\n    d: {hinge: luff, free: true}\n",
                     "{rope_elasticity: false}")
     assert exc.value.entry == "effects.rope_elasticity"
+    assert str(exc.value.file) == str(_dir() / f"s{_count[0]}.yaml")     # the scene file
+    assert "drive 'd'" in exc.value.message
+
+
+JIB = """cranefe: 1
+name: planar elastic jib with a hanging load
+plane: xz
+nodes:
+  A:    [0.0, 0.0, 20.0]
+  D:    [-2.0, 0.0, 20.0]
+  T:    [12.0, 0.0, 20.0]
+  HOOK: [12.0, 0.0, 12.0]
+ground: [A, D]
+masses: {HOOK: 1500}
+drums:
+  hoist: {node: D, radius: 0.2, inertia: 5.0}
+ropes:
+  hoist_rope: {EA: 2.0e7, path: [hoist, T, HOOK]}
+members:
+  jib: {type: beam, nodes: [A, T], E: 2.1e+11, A: 0.012, Iy: 2.0e-2, rho: 7850,
+        elements: 2, mass: lumped}
+"""
+
+
+def test_an_elastic_structure_with_inextensible_ropes_is_refused():
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(JIB, "  duration: 1\n", "{structure: flexible, rope_elasticity: false}")
+    assert exc.value.entry == "effects.rope_elasticity"
+    assert str(exc.value.file) == str(_dir() / f"s{_count[0]}.yaml")
+    assert "elastic structure" in exc.value.message
 
 
 # ----------------------------------------------------------------- errors
