@@ -330,6 +330,8 @@ def test_drum_profile_winds_rope_by_hand():
     assert ev.P_wound == pytest.approx(S * R * om - dU, rel=1e-7)
     T, Vg, Ue = mech.energy(ev, np.array([True]))
     assert Ue == pytest.approx(U(L0), rel=1e-7)
+    evs = mech.evaluate(t, q, v, np.array([False]))
+    assert evs.P_wound == 0.0 and evs.P_drive == 0.0
     assert T == pytest.approx(0.5 * m * (v @ v), rel=RTOL)
     # the drum's rope paid out past its reserve: AnalysisError only for coordinates
     mech.check_range(ev, t)
@@ -383,6 +385,8 @@ def test_a_drum_winds_only_its_own_rope():
     S2 = 1.0e6 * np.log(l2 / (5.0 / lam[1]))
     F = np.concatenate([[0, -1000 * G] - 2 * S1 * e1 + S2 * e2, [0, -500 * G] - S2 * e2])
     np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * 1000 * G)
+    # only the drum feeds power (the loads at rest): R S1 omega
+    assert ev.P_drive == pytest.approx(0.5 * S1 * 0.4, rel=1e-9)
 
 
 def test_without_gravity_the_vertical_is_z():
@@ -558,6 +562,7 @@ def test_axial_spring_and_its_dashpot_by_hand():
     assert Vg == pytest.approx(m * G * q[2], rel=RTOL)
     ev0 = mech.evaluate(0.0, q, v, np.zeros(0, bool), damping=False)
     np.testing.assert_allclose(ev0.N, [N], rtol=RTOL)
+    assert ev0.P_diss == 0.0
 
 
 # ----------------------------------------------------------------- joint coordinates
@@ -926,7 +931,9 @@ def test_two_springs_and_a_rope_share_the_load():
             "springs:\n  - {name: a, type: axial, nodes: [A, H], stiffness: 2.0e5}\n"
             "  - {name: b, type: axial, nodes: [B, H], stiffness: 2.0e5}\n"
             "ropes:\n  r: {EA: 1.0e6, path: [C, H]}\n")
-    mech = _scene_mech(text, "  duration: 1\n")
+    text = text.replace("stiffness: 2.0e5}", "stiffness: 2.0e5, psi: 0.4}").replace(
+        "path: [C, H]}", "psi: 0.2, path: [C, H]}")
+    mech = _scene_mech(text, "  duration: 1\n", "{damping: exact}")
     cs = 1 / np.sqrt(2)
     u = m * G / (EA / 5 + 2 * k * cs * cs)
     np.testing.assert_allclose(mech.S0, [EA / 5 * u], rtol=1e-9)
@@ -948,6 +955,24 @@ def test_two_springs_and_a_rope_share_the_load():
     Ue += EA * (L * np.log(L / L0) - L + L0)
     np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * m * G)
     assert mech.energy(ev, mech.taut0)[2] == pytest.approx(Ue, rel=1e-7)
+    # tangent: each element's k e e^T + N/d (I - e e^T) (rope: EA/L, S/L);
+    # dashpots: each b e e^T, b = psi k / (2 pi sqrt(k/m)) (|e| = 1 on one load)
+    Kh = np.zeros((3, 3))
+    Ch = np.zeros((3, 3))
+    for a, kk, N0, d0, psi in (([-5, 0, 10], k, k * cs * u, np.sqrt(50), 0.4),
+                               ([5, 0, 10], k, k * cs * u, np.sqrt(50), 0.4),
+                               ([0, 0, 10], None, None, None, 0.2)):
+        dv = q - a
+        dl = np.linalg.norm(dv)
+        e = dv / dl
+        if kk is None:
+            kk, N = EA / dl, EA * np.log(dl / L0)
+        else:
+            N = N0 + kk * (dl - d0)
+        Kh += kk * np.outer(e, e) + N / dl * (np.eye(3) - np.outer(e, e))
+        Ch += psi * kk / (2 * np.pi * np.sqrt(kk / m)) * np.outer(e, e)
+    np.testing.assert_allclose(ev.K, Kh, rtol=1e-9, atol=1e-9 * np.abs(Kh).max())
+    np.testing.assert_allclose(ev.C, Ch, rtol=1e-9, atol=1e-9 * np.abs(Ch).max())
 
 
 def test_a_joint_listed_child_first_moves_the_other_way():
@@ -1084,3 +1109,15 @@ def test_a_breakpoint_seen_from_the_left_by_a_trolley_coordinate():
                        mech.taut0)
     assert ev.F[2] == pytest.approx(300 - 500 * 1.0, rel=1e-12)
     np.testing.assert_allclose(ev.F[:2], 0.0, atol=1e-6)
+    # the load 0.3 m ahead of the trolley: the drives' power is the rope's pull on the
+    # prescribed motion of K, -S e . V_K (V_K = 0.5 m/s along x), plus the bridge's work
+    # on the trolley, m_t (a_b + s'') v_b with s'' = (300 - m_t a_b + S e_x) / m_t
+    q = np.array([1.425, mech.q0[1], 0.0])
+    ev = mech.evaluate(0.5, q, np.array([0.5, 0, 0]), mech.taut0)
+    d = np.array([0.3, q[1] - 10.0])
+    L = np.linalg.norm(d)
+    S = 1.0e7 * np.log(L / mech.L0_ref[0])
+    ex = d[0] / L
+    s2 = (300 - 500 * 1.0 + S * ex) / 500
+    assert ev.F[2] == pytest.approx(300 - 500 + S * ex, rel=1e-9)
+    assert ev.P_drive == pytest.approx(-S * ex * 0.5 + 500 * (1 + s2) * 0.5, rel=1e-9)
