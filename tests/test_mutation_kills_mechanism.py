@@ -1121,3 +1121,57 @@ def test_a_breakpoint_seen_from_the_left_by_a_trolley_coordinate():
     s2 = (300 - 500 * 1.0 + S * ex) / 500
     assert ev.F[2] == pytest.approx(300 - 500 + S * ex, rel=1e-9)
     assert ev.P_drive == pytest.approx(-S * ex * 0.5 + 500 * (1 + s2) * 0.5, rel=1e-9)
+
+
+HOIST_TROLLEY = """cranefe: 1
+name: hoist rope over a moving trolley
+plane: xz
+nodes:
+  W: [-2, 0, 10]
+  K: [0, 0, 10]
+  H: [0, 0, 0]
+ground: [W]
+masses: {H: 1000}
+drums:
+  hoist: {node: W, radius: 0.5, inertia: 10, rope_reserve: 100}
+bodies:
+  trolley: {mass: 500, com: [0, 0, 10], inertia: [10, 10, 10], nodes: [K]}
+joints:
+  - {name: travel, type: slider, bodies: [ground, trolley], at: K, axis: [1, 0, 0],
+     range: [-1, 20]}
+ropes:
+  hoist: {EA: 1.2e6, path: [hoist, K, H]}
+springs:
+  - {name: s, type: axial, nodes: [K, H], stiffness: 5.0e4}
+"""
+
+
+def test_power_of_a_hoist_drum_and_a_trolley_on_a_rope_and_a_spring():
+    """The rope W-K-H (drum at W, profile omega = 0.4) and a spring K-H share the load
+    by stiffness (u = m g / (EA/12 + k)); the drives feed S (e_WK - e_KH) . V_K (the
+    trolley pulls both spans), R S omega (the drum) and N (-e_KH) . V_K (the spring's
+    end on the trolley)."""
+    m, EA, k, R, om = 1000.0, 1.2e6, 5.0e4, 0.5, 0.4
+    mech = _scene_mech(HOIST_TROLLEY, "  duration: 4\n  drives:\n    trolley: {slider: travel, "
+                       "profile: {type: trapezoid, distance: 2, v_max: 1, a_max: 1}}\n"
+                       f"    h: {{drum: hoist, profile: {{type: table, speed: [[0, {om}]]}}}}\n")
+    u = m * G / (EA / 12 + k)
+    np.testing.assert_allclose(mech.S0, [EA / 12 * u], rtol=1e-9)
+    np.testing.assert_allclose(mech.N_ref, [k * u], rtol=1e-9)
+    t = 1.5
+    xs, vs = trolley_xs(t)[:2]
+    q = np.array([xs + 0.4, 0.1])
+    ev = mech.evaluate(t, q, np.zeros(2), mech.taut0)
+    K = np.array([xs, 10.0])
+    d1 = K - [-2, 10]
+    d2 = q - K
+    l1, l2 = np.linalg.norm(d1), np.linalg.norm(d2)
+    e1, e2 = d1 / l1, d2 / l2
+    lam = np.exp(mech.S0[0] / EA)
+    L0 = (12.0 - R * om * t) / lam
+    S = EA * np.log((l1 + l2) / L0)
+    N = k * u + k * (l2 - 10.0)
+    VK = np.array([vs, 0.0])
+    P = S * (e1 - e2) @ VK + R * S * om + N * (-e2 @ VK)
+    assert ev.P_drive == pytest.approx(P, rel=1e-9)
+    np.testing.assert_allclose(ev.F, [0, -m * G] - (S + N) * e2, rtol=1e-9)
