@@ -1175,3 +1175,70 @@ def test_power_of_a_hoist_drum_and_a_trolley_on_a_rope_and_a_spring():
     P = S * (e1 - e2) @ VK + R * S * om + N * (-e2 @ VK)
     assert ev.P_drive == pytest.approx(P, rel=1e-9)
     np.testing.assert_allclose(ev.F, [0, -m * G] - (S + N) * e2, rtol=1e-9)
+
+
+BLOCK = """cranefe: 1
+name: load on a sling below a massless block on 2 falls
+plane: xz
+nodes:
+  W: [-5, 0, 20]
+  S: [0, 0, 20]
+  B: [0, 0, 10]
+  L: [0, 0, 7]
+ground: [W, S]
+masses: {L: 1000}
+drums:
+  hoist: {node: W, radius: 0.5, inertia: 10, rope_reserve: 100}
+ropes:
+  hoist: {EA: 1.0e7, path: [hoist, S, {node: B, falls: 2}]}
+  sling: {EA: 5.0e6, path: [B, L]}
+"""
+
+
+def test_a_massless_block_by_hand():
+    """The block B (no mass) is a coordinate with M = 0 after the load L; statics: the
+    two falls carry m g / 2 each, the sling m g; forces at a displaced state:
+    F_B = -2 S_1 e_1 + S_2 e_2, F_L = m g - S_2 e_2 (e_1 = (B - S)/l_1, e_2 = (L - B)/l_2)."""
+    m = 1000.0
+    mech = _scene_mech(BLOCK, "  duration: 1\n")
+    assert mech.free.tolist() == [3, 2] and mech.qy.tolist() == [2, 3]
+    np.testing.assert_allclose(mech.M, [m, m, 0, 0], atol=0)
+    np.testing.assert_allclose(mech.S0, [m * G / 2, m * G], rtol=1e-9)
+    q = np.array([0.2, 6.9, 0.1, 9.95])
+    ev = mech.evaluate(0.0, q, np.zeros(4), mech.taut0)
+    L_, B = q[:2], q[2:]
+    l1 = np.linalg.norm(B - [0, 20])
+    e1 = (B - [0, 20]) / l1
+    l2 = np.linalg.norm(L_ - B)
+    e2 = (L_ - B) / l2
+    S1 = 1.0e7 * np.log((5 + 2 * l1) / (25 * np.exp(-m * G / 2 / 1.0e7)))
+    S2 = 5.0e6 * np.log(l2 / (3 * np.exp(-m * G / 5.0e6)))
+    F = np.concatenate([[0, -m * G] - S2 * e2, -2 * S1 * e1 + S2 * e2])
+    np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * m * G)
+    for eff, entry in (("{damping: exact}", "effects.damping"),
+                       ("{rope_elasticity: false}", "effects.rope_elasticity")):
+        with pytest.raises(ModelError) as exc:
+            _scene_mech(BLOCK, "  duration: 1\n", eff)
+        assert exc.value.entry == entry and "node(s) B with" in exc.value.message
+
+
+def test_loops_and_free_bodies_are_refused():
+    # a second joint between the ground and the driven trolley closes a loop
+    text = TROLLEY.replace("MASS", "1000").replace("EAVAL", "1.0e7").replace(
+        "ropes:", "  - {name: extra, type: hinge, bodies: [ground, trolley], at: K, "
+        "axis: [0, 1, 0]}\nropes:")
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(text, TROLLEY_DRIVE)
+    assert exc.value.entry == "analysis.drives.trolley" and "extra" in exc.value.message
+    # a body without a joint
+    text = TROLLEY.replace("MASS", "1000").replace("EAVAL", "1.0e7").replace(
+        "joints:", "  crate: {mass: 50, com: [5, 0, 0], inertia: [1, 1, 1], nodes: []}\n"
+        "joints:")
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(text, TROLLEY_DRIVE)
+    assert exc.value.entry == "bodies.crate"
+    # a joint coordinate that carries no mass
+    text = ARM.replace("arm: {mass: 200,", "arm: {mass: 0,")
+    with pytest.raises(ModelError) as exc:
+        _scene_mech(text, "  duration: 2\n  drives:\n    d: {hinge: luff, torque: 100}\n")
+    assert exc.value.entry == "analysis.drives.d" and "no mass" in exc.value.message
