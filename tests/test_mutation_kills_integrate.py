@@ -416,3 +416,34 @@ def test_trolley_force_carries_a_guided_load_at_the_closed_form():
     np.testing.assert_allclose(res.drive_position[:, 0], 0.1 * res.times ** 2, atol=1e-9)
     np.testing.assert_allclose(res.mass_position[:, 0, 2], 0.0, atol=1e-9)
     np.testing.assert_allclose(res.mass_position[:, 0, 0], 0.1 * res.times ** 2, atol=1e-9)
+
+
+DROP2 = """cranefe: 1
+name: two dropped loads
+nodes:
+  A: [0, 0, 10]
+  B: [3, 0, 10]
+  H: [0, 0, 5]
+  K: [3, 0, 5]
+ground: [A, B]
+masses: {H: 100, K: 100}
+ropes:
+  r1: {EA: 1.0e6, path: [A, H]}
+  r2: {EA: 1.0e6, path: [B, K]}
+"""
+
+
+def test_two_ropes_pulled_taut_at_their_free_fall_times():
+    """Two loads released at rest 0.2 m and 0.2005 m above their ropes' taut points: the
+    free fall is integrated exactly, so the steps grow to the run's max_step and both
+    crossings fall in one step; each event at sqrt(2 d / g), the earlier first."""
+    model = _scene("drop2", DROP2, "  duration: 0.22\n  tolerance: 1.0e-8\n  max_step: 0.5\n",
+                   "{sway: false}")
+    mech = Mechanism(model, parse(model))
+    L0 = mech.L0_ref
+    q = np.array([10.0 - L0[0] + 0.2, 10.0 - L0[1] + 0.2005])
+    res = simulate(model, initial={"q": q, "v": np.zeros(2)}, fast=False)
+    ev = [(t, w) for t, w in res.events if w.endswith("taut")]
+    assert [w for _, w in ev] == ["rope r1 taut", "rope r2 taut"], res.events
+    assert ev[0][0] == pytest.approx(math.sqrt(2 * 0.2 / G), abs=1e-9)
+    assert ev[1][0] == pytest.approx(math.sqrt(2 * 0.2005 / G), abs=1e-9)
