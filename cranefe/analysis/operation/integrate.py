@@ -328,6 +328,13 @@ def simulate(model, progress=None, initial=None, fast=None):
         q = np.asarray(initial.get("q", q), float).copy()
         v = np.asarray(initial.get("v", v), float).copy()
     taut = mech.taut0.copy()
+    if initial is not None and not mech.inextensible and len(taut):
+        # an elastic rope is taut where the given state stretches it (L > L0), not as in
+        # the static state: else a rope given slack starts "taut", the first step finds
+        # its crossing at t ~ 0 and that step of ~1e-17 s, shorter than the positions'
+        # round-off, reverses the given velocity (v1 = 2 (q1 - q0)/h - v0 with q1 = q0)
+        ev0 = mech.evaluate(0.0, q, v, taut, damping=False, powers=False)
+        taut = np.where(ev0.L != ev0.L0, ev0.L > ev0.L0, taut)
     t = 0.0
     if mech.inextensible or initial is not None:    # a given state made consistent
         q, v = st.consistent(t, q, v, taut)           # (ropes, massless blocks)
