@@ -168,6 +168,14 @@ PRESETS = {
     # a four-bar luffed by a cylinder on its coupler against hand geometry
     "linkage": ("cranefe/analysis/operation/linkage.py",
                 ["tests/test_mutation_kills_linkage.py"]),
+    # operation engine: the equations at a state (forces, tangents, kinematics, statics,
+    # energies, powers) by hand on small scenes, no integration (~0.5 s)
+    "mechanism": ("cranefe/analysis/operation/mechanism.py",
+                  ["tests/test_mutation_kills_mechanism.py"]),
+    # the numpy stepper (fast=False): one trapezoidal step and its error estimate by
+    # hand, the step controller, events at free-fall times, runs against scipy (~4 s)
+    "integrate": ("cranefe/analysis/operation/integrate.py",
+                  ["tests/test_mutation_kills_integrate.py"]),
 }
 
 
