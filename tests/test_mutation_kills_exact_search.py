@@ -205,8 +205,15 @@ PSI_OD = np.array([15.0, 0.5, 0.5, 0.5, 0.5])    # 15 > 4 pi: coordinate 1 overd
 
 
 def _overdamped():
+    """Five uncoupled modes and a sixth, free one (a rigid-body root lam = 0, like
+    slewing), which the elastic modes V (6 x 5) leave out; the coordinates are the modes
+    turned by 0.3 rad in the plane of modes 1 and 6 (M = I stays), so that no coordinate
+    is a mode and QZ's vectors carry round-off along the rigid one."""
     w = W_OD
-    return (np.diag(w**2), np.eye(5), np.diag(PSI_OD * w**2), np.eye(5), w,
+    R = np.eye(6)
+    R[np.ix_([0, 5], [0, 5])] = [[np.cos(0.3), -np.sin(0.3)], [np.sin(0.3), np.cos(0.3)]]
+    return (R @ np.diag(np.append(w**2, 0.0)) @ R.T, np.eye(6),
+            R @ np.diag(np.append(PSI_OD * w**2, 0.0)) @ R.T, R[:, :5], w,
             PSI_OD / (4 * np.pi))
 
 
@@ -226,8 +233,10 @@ def test_overdamped_mode_among_light_ones(path, monkeypatch):
     and damped w = 0 exactly; the complex stiffness gives mu = w^2 (1 + 2.39 i), zeta 1.19.
     The four other coordinates (psi 0.5, zeta 0.0398) keep their closed forms. A filter
     that drops real roots (`Im lam >= +1e-9 |lam|`) leaves mode 1 a root of another
-    coordinate. "arpack": the block iteration forced not to converge, so ARPACK's 8 Ritz
-    values (real roots among complex ones) are picked from. Tolerance 1e-9 relative, 1e-9
+    coordinate; a refinement shift |ev| to the right of the slow root -5.46 (at ~5e-6)
+    would converge to the free coordinate's root 0. "arpack": the block iteration forced
+    not to converge, so ARPACK's 8 Ritz values (real roots among complex ones) are
+    picked from. Tolerance 1e-9 relative, 1e-9
     rad/s absolute for the damped w = 0 (the iterative paths' real root carries round-off
     in Im lam, ~1e-15 of |lam| = 5.5)."""
     if path == "arpack":
