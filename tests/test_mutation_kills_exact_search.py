@@ -7,8 +7,9 @@ chain against mpmath; there every root is nearest its own estimate, so a wrong s
 start block, partner list or convergence test could not change a result.
 
 Exact answers used below (derived here, no code under test):
-- Repeated frequency w (M = I, K = w^2 I) with a coupling K_psi: every vector is an
-  undamped mode; take V = I. With B = K_psi / (2 pi w) (the same for both modes, eq. 12
+- Repeated frequency w (M = I, K = w^2 I on two coordinates, four uncoupled ones far
+  above) with a coupling K_psi: every vector of the pair's plane is an undamped mode;
+  take V = the two unit vectors. With B = K_psi / (2 pi w) (the same for both modes, eq. 12
   at w) and K_psi u_k = kappa_k u_k, the viscous roots are
   lam_k = -beta_k / 2 + i sqrt(w^2 - beta_k^2 / 4), beta_k = kappa_k / (2 pi w), so
   |lam_k| = w, zeta_k = beta_k / (2 w) = kappa_k / (4 pi w^2), damped w = Im lam_k; the
@@ -56,10 +57,15 @@ def _kappa(w):
 
 
 def _repeated(w=100.0):
-    K = w**2 * np.eye(2)
-    P = w**2 / 100 * np.array([[8.0, 2.0], [2.0, 6.0]])
-    zeta = np.diag(P) / (4 * np.pi * w**2)              # H_ii / (2 w^2), H = P / (2 pi)
-    return K, np.eye(2), P, np.eye(2), np.full(2, w), zeta
+    """The pair, plus four uncoupled coordinates at 3w to 6w (psi 0.05, not asked for) so
+    that the operators are big enough for ARPACK's fallback (k <= size - 2 Ritz values)
+    to see both roots of the pair, as it does in the models that take this path
+    (n > DENSE_MAX)."""
+    K = w**2 * np.diag([1.0, 1.0, 9.0, 16.0, 25.0, 36.0])
+    P = 0.05 * K
+    P[:2, :2] = w**2 / 100 * np.array([[8.0, 2.0], [2.0, 6.0]])
+    zeta = np.diag(P)[:2] / (4 * np.pi * w**2)          # H_ii / (2 w^2), H = P / (2 pi)
+    return K, np.eye(6), P, np.eye(6)[:, :2], np.full(2, w), zeta
 
 
 def _repeated_exact(w=100.0, scale=1.0):
@@ -97,11 +103,12 @@ def test_repeated_frequency_pair_without_partners(path, w, monkeypatch):
 @pytest.mark.parametrize("path", PATHS)
 def test_repeated_frequency_pair_needs_its_partner(path, monkeypatch):
     """The same pair with the undamped estimate zeta = 0: the shift (i w, w^2) is then
-    nearer the LESS damped root (kappa_-) for both modes, so mode 1 alone converges to
-    mode 2's root; with the coupling given (Hasselman's eps_12 = |H_12| / |H_11 - H_22| =
+    nearer the LESS damped root (kappa_-) for both modes, so mode 1 alone heads for mode
+    2's root; with the coupling given (Hasselman's eps_12 = |H_12| / |H_11 - H_22| =
     2 / 2 = 1, any value > 0 makes them partners) the start block holds both modes, the
-    Rayleigh-Ritz step yields both roots and participation picks mode 1's own. Results in
-    the order of `which` = (1, 0). Tolerance 1e-8 on the sparse viscous zeta: a Ritz
+    Rayleigh-Ritz step yields both roots and participation picks mode 1's own (without
+    partners the participation check sends mode 1 to ARPACK). Results in the order of
+    `which` = (1, 0). Tolerance 1e-8 on the sparse viscous zeta: a Ritz
     value from a 2-vector block of the (non-normal) first-order operator errs by about
     50 times its residual (measured 3e-10 at the residual 6e-12); elsewhere 1e-9."""
     v_ref, h_ref = _repeated_exact()
@@ -123,8 +130,9 @@ def test_close_root_nearer_the_estimate_without_partners(path, monkeypatch):
     vector with participation below 1/2 sends the search to ARPACK's nearest roots,
     picked by participation. Closed forms with kappa halved; tolerance as above."""
     K, M, P, V, w, zeta = _repeated()
+    P[:2, :2] /= 2
     v_ref, h_ref = _repeated_exact(scale=0.5)
-    v, h = _solve(K, M, P / 2, V, w, zeta / 2, coupling=None, path=path,
+    v, h = _solve(K, M, P, V, w, zeta / 2, coupling=None, path=path,
                   monkeypatch=monkeypatch)
     np.testing.assert_allclose(v, v_ref, rtol=1e-9)
     np.testing.assert_allclose(h, h_ref, rtol=1e-9)
@@ -148,7 +156,7 @@ def test_psi_stiffness_by_default(monkeypatch):
 def test_dense_max_coordinates_take_qz(monkeypatch):
     """DENSE_MAX is the largest size solved by QZ (constants.py): a system of exactly
     DENSE_MAX coordinates must not reach the iterative search."""
-    monkeypatch.setattr(exact, "DENSE_MAX", 2)
+    monkeypatch.setattr(exact, "DENSE_MAX", 6)
 
     def no_search(*a, **k):
         raise AssertionError("the iterative search was used at n = DENSE_MAX")
