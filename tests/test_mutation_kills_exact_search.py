@@ -77,7 +77,7 @@ def _repeated_exact(w=100.0, scale=1.0):
     return viscous, hyst
 
 
-@pytest.mark.parametrize("w", [100.0, 0.25])
+@pytest.mark.parametrize("w", [100.0, 0.25, 0.05])
 @pytest.mark.parametrize("path", PATHS)
 def test_repeated_frequency_pair_without_partners(path, w, monkeypatch):
     """Two modes at one frequency coupled by K_psi (zeta 0.0073 and 0.0038): each mode's
@@ -90,7 +90,10 @@ def test_repeated_frequency_pair_without_partners(path, w, monkeypatch):
     shift mirrored (1 - 2 i zeta), scaled (3 i zeta, w^2 / (1 + 2 i zeta)) or moved by
     1e-3 w^3 is nearer the other root. At w = 0.25 rad/s (a crane's sway) the pair is
     7.1e-3 |mu| apart in Im mu: a shift offset not scaled as w^2 (1e-3 / w^2 = 0.26 |mu|,
-    2e-3 w = 8e-3 |mu|) lands nearer the other root. Tolerance 1e-9 relative: the sparse iteration
+    2e-3 w = 8e-3 |mu|) lands nearer the other root; a mode heading for its partner's
+    root is then sent to ARPACK (participation below 1/2), whose 4 roots nearest the
+    shift hold it, except at w = 0.05 rad/s, where 1e-3 / w^2 = 160 |mu| puts the shift
+    among the four far coordinates. Tolerance 1e-9 relative: the sparse iteration
     stops at a relative residual of 1e-10, or below 1e-7 when it falls by less than 0.3
     per step, and these pencils are normal (K, M multiples of I), so the eigenvalue errs
     by about the residual squared; QZ + refinement are at round-off."""
