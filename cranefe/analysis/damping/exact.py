@@ -95,13 +95,19 @@ def _arpack(apply, size, k):
 
 def _nearest(apply, Z0, sigma, v, M, n, upper):
     """The eigenvalue near sigma whose vector (first n entries) is most like mode v:
-    block iteration from Z0, ARPACK if that does not converge."""
+    block iteration from Z0, ARPACK if that does not converge or finds a vector that is
+    mostly another mode's (participation below 1/2)."""
     def pick(nu, X):
         lam = sigma + 1 / nu
         ok = (lam.imag >= -1e-9 * np.abs(lam)) if upper else np.ones(len(nu), bool)
         return int(np.argmax(_participation(v, M, X[:n]) * ok + ok * 1e-300))
-    nu, _, done = _block_inverse(apply, Z0, pick)
-    if not done:
+    nu, x, done = _block_inverse(apply, Z0, pick)
+    # The block converges to the roots nearest sigma. If the mode's own root is not among
+    # them (a close root nearer the estimate and no partner in the block), the best Ritz
+    # vector belongs to another mode. The participations of a mode in all roots sum to 1
+    # (M-orthonormal vectors, nearly so for the viscous roots), so one above 1/2 is the
+    # largest; below it, ARPACK's 8 nearest roots are searched.
+    if not done or _participation(v, M, x[:n, None])[0] < 0.5:
         nus, Z = _arpack(apply, Z0.shape[0], max(8, Z0.shape[1] + 4))
         nu = nus[pick(nus, Z)]
     return sigma + 1 / nu
