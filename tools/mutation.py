@@ -86,9 +86,6 @@ PRESETS = {
                        "tests/test_validation_study.py::test_spatial_spreader_with_sway_against_exudyn",
                        "tests/test_structures.py::test_member_end_forces_under_self_weight_are_exact",
                        "tests/test_mutation_kills_statics.py"]),
-    "damping_exact": ("cranefe/analysis/damping/exact.py",
-                      ["tests/test_values.py", "tests/test_damping.py",
-                       "tests/test_mutation_kills_exact.py"]),
     # newmark: the Stepper on hand-built Equations of 1-2 coordinates (no model, no
     # statics: ~1 s a mutant; a whole run of the 859 in ~16 min) + the Cayley-map case
     "newmark": ("cranefe/analysis/transient/newmark.py",
@@ -176,6 +173,15 @@ PRESETS = {
     # hand, the step controller, events at free-fall times, runs against scipy (~4 s)
     "integrate": ("cranefe/analysis/operation/integrate.py",
                   ["tests/test_mutation_kills_integrate.py"]),
+    # damping_exact: fast kill tests only (the analyses of test_values/test_damping ran
+    # minutes per mutant; that set is damping_exact_broad): a 3-DOF chain against mpmath,
+    # repeated/overdamped/massless cases and the eigen-search's parts by closed forms
+    "damping_exact": ("cranefe/analysis/damping/exact.py",
+                      ["tests/test_mutation_kills_exact.py",
+                       "tests/test_mutation_kills_exact_search.py"]),
+    "damping_exact_broad": ("cranefe/analysis/damping/exact.py",
+                            ["tests/test_values.py", "tests/test_damping.py",
+                             "tests/test_mutation_kills_exact.py"]),
 }
 
 
