@@ -18,6 +18,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from cranefe.analysis.luffing.laws import standard_law
+from cranefe.analysis.luffing.optimum import LawSolution
 from cranefe.analysis.luffing.sway import (KINDS, TipMotion, residual_linear_exact,
                                            simulate, swing_free_law)
 
@@ -160,6 +161,11 @@ def test_swing_free_law_meets_its_definition(which, j):
     p = _Proxy()
     law = swing_free_law(p, A0, AK, TK, H, G, guess, which=which)
     assert law.status == 0 and law.name == "swing-free"
+    # what the luffing report shows of the solve (analysis.py: status, message,
+    # iterations, nodes, time)
+    assert isinstance(law.message, str) and law.message
+    assert law.iterations >= 1 and law.evaluations == 0 and 0 < law.time_s < 600
+    assert law.info["nodes"] >= 81
     assert residual_linear_exact(guess, p, TK, H, G) > 0.05
     assert residual_linear_exact(law, p, TK, H, G) < 1e-7
     W = np.sqrt(G / H) * TK
@@ -177,3 +183,41 @@ def test_swing_free_law_meets_its_definition(which, j):
     mid = tau[1:-1]
     fd = (law.evaluate(mid + h)[0] - law.evaluate(mid - h)[0]) / (2 * h)
     np.testing.assert_allclose(law.evaluate(mid)[1], fd, rtol=0, atol=1e-6)
+
+
+def test_swing_free_law_uses_the_complete_inertia_by_default():
+    guess = standard_law("cubic", A0, AK)
+    law = swing_free_law(_Proxy(), A0, AK, TK, H, G, guess)
+    ref = swing_free_law(_Proxy(), A0, AK, TK, H, G, guess, which="complete")
+    np.testing.assert_allclose(law.info["multipliers"], ref.info["multipliers"], rtol=1e-12)
+
+
+def test_tip_motion_at_its_edges():
+    """At a break the left piece answers (the integration of [a, b] ends there with the
+    acceleration from the left: the trapezoid accelerates up to t = 1.6 s); a time a
+    round-off past the end answers the end (the Chebyshev variable clipped to 1, as
+    before the start to -1); a law without breaks is one piece; the law is sampled
+    only on [0, 1] (a law undefined outside, nan there, still gives a finite tip)."""
+    tip = TipMotion(standard_law("trapezoidal", A0, AK), _Proxy(), TK)
+    left, right = _tip("trapezoidal", 1.6 - 1e-9), _tip("trapezoidal", 1.6 + 1e-9)
+    np.testing.assert_allclose(tip(1.6), left[2:], atol=1e-7)
+    assert abs(tip(1.6)[2] - right[4]) > 0.1
+    np.testing.assert_allclose(tip(TK + 1e-12), tip(TK), atol=1e-12)
+    np.testing.assert_allclose(tip(-1e-12), tip(0.0), atol=1e-12)
+    base = standard_law("cubic", A0, AK)
+
+    def inside(tau):
+        tau = np.atleast_1d(tau)
+        a, d1, d2 = base.evaluate(tau)
+        bad = (tau < 0) | (tau > 1)
+        return np.where(bad, np.nan, a), np.where(bad, np.nan, d1), np.where(bad, np.nan, d2)
+
+    tip = TipMotion(LawSolution("own", inside), _Proxy(), TK)     # info without breaks
+    assert tip.edges == [0.0, TK]
+    for t in (0.0, 3.3, TK):
+        np.testing.assert_allclose(tip(t), _tip("cubic", t)[2:], atol=1e-11)
+
+
+def test_simulate_samples_801_times_by_default():
+    out = simulate(TipMotion(standard_law("cubic", A0, AK), _Proxy(), TK), H, G, "linear")
+    assert len(out["t"]) == len(out["psi"]) == 801

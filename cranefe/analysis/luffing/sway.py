@@ -30,7 +30,6 @@ class TipMotion:
 
     def __init__(self, law, proxy, t_k, points=129):
         from numpy.polynomial import chebyshev as C
-        self.C = C
         self.t_k = t_k
         edges = [0.0, *law.info.get("breaks", []), 1.0]
         self.pieces = []
