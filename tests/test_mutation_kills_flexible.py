@@ -248,6 +248,13 @@ def test_jib_tip_deflection_under_a_hanging_load(tmp_path):
     np.testing.assert_allclose(mech.q0[0], 12 + ux, atol=1e-12)
     assert mech.taut0.all()
     np.testing.assert_allclose(mech.hold_torque, [0.0])
+    # the power through the rope of a tip moving at u' = (0.3, -0.2) m/s on the ground
+    # frame (no frame power): u' . (0, -S) with S = 1500 g
+    v = np.zeros(mech.n)
+    v[o:o + 2] = [0.3, -0.2]
+    ev = mech.evaluate(0.0, mech.q0, v, mech.taut0)
+    np.testing.assert_allclose(mech.flex.power(mech, ev, mech.q0, v), 0.2 * 1500 * 9.81,
+                               rtol=1e-9)
 
 
 TRUSS2 = """cranefe: 1
@@ -320,3 +327,42 @@ def test_what_the_structure_refuses(tmp_path, edit, words, entry):
     assert words in str(exc.value), str(exc.value)
     if entry:
         assert entry in str(exc.value)
+
+
+def test_rope_over_the_tip_of_a_luffed_boom(tmp_path):
+    """The boom of a hinge luffed by phi(t) = 0.05 t^2 / 2 about -y through F (R by
+    Rodrigues' formula, written out): at t = 1.5 s the rope over the boom's tip BT pulls
+    the tip's coordinates (in the frame's axes) with -S dL/du, L = |X_BT - X_D| +
+    |X_HOOK - X_BT| and X_BT = R (X_BT0 - F + u) + F (a central difference of the hand
+    L, to 1e-7 of S): the difference of the forces with the rope taut and slack."""
+    from test_operation_flexible import BOOM
+    model = load(write(tmp_path, BOOM, "  duration: 3\n  drives:\n    luff: {hinge: luff, "
+                       "profile: {type: table, speed: [[0, 0], [2, 0.1]]}}\n"))
+    mech = mechanism(model)
+    assert mech.flex.labels()[:2] == ["BT.ux", "BT.uz"] and mech.nc == 2
+    t = 1.5
+    phi = 0.05 * t * t / 2
+    c, s = math.cos(phi), math.sin(phi)
+    R = np.array([[c, 0, -s], [0, 1, 0], [s, 0, c]])        # about (0, -1, 0)
+    Fp, D = np.array([0.0, 0, 2.0]), np.array([-1.0, 0, 2.0])
+    BT0 = np.array([14.1421, 0.0, 16.1421])
+    q = mech.q0.copy()
+    q[2:4] += [0.03, -0.05]
+    hook = np.array([q[0], 0.0, q[1]])
+
+    def length(u):
+        x = R @ (BT0 - Fp + np.array([u[0], 0.0, u[1]])) + Fp
+        return np.linalg.norm(x - D) + np.linalg.norm(hook - x)
+    h = 1e-6
+    dL = np.array([(length(q[2:4] + h * e) - length(q[2:4] - h * e)) / (2 * h)
+                   for e in np.eye(2)])
+    v = np.zeros(mech.n)
+    taut = mech.evaluate(t, q, v, np.array([True]))
+    slack = mech.evaluate(t, q, v, np.array([False]))
+    S = float(taut.S[0])
+    assert S > 1000
+    np.testing.assert_allclose(taut.F[2:4] - slack.F[2:4], -S * dL, rtol=0, atol=1e-7 * S)
+    X = mech.place(t, q, v)[0]
+    np.testing.assert_allclose(X[model.node_names.index("BT")],
+                               R @ (BT0 - Fp + [q[2], 0, q[3]]) + Fp,
+                               atol=1e-12)
