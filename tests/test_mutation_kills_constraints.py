@@ -22,7 +22,6 @@ tens of seconds together). References, none computed by the module:
   in, from differentiating that equilibrium by hand.
 """
 
-import functools
 import math
 import types
 
@@ -236,8 +235,8 @@ def test_crossing_and_error_estimate(pend):
     assert st.gtol == 1e-13 * ls
 
 
-@functools.lru_cache(maxsize=None)
 def _short_pendulum():
+    """The run (not cached: mutmut's forked runs must integrate with the mutant)."""
     import tempfile
     from pathlib import Path
     tmp = Path(tempfile.mkdtemp(prefix="kill-constraints-"))

@@ -48,8 +48,9 @@ def mechanism(model):
     return Mechanism(model, parse(model))
 
 
-@functools.lru_cache(maxsize=None)
 def _rotor():
+    """A fresh mechanism each time (not cached: mutmut's forked runs must build it with
+    the mutant)."""
     import tempfile
     from pathlib import Path
     tmp = Path(tempfile.mkdtemp(prefix="kill-flexible-"))
