@@ -316,6 +316,10 @@ def test_truss_and_spring_by_hand(tmp_path):
     (("ground: [A, B, C]", "ground: [A, B, C]\nsupports:\n  T: {fix: [ux]}"),
      "has a support", None),
     (("mass: lumped", "mass: consistent"), "consistent mass matrix", "members.bars.mass"),
+    (("ground: [A, B, C]", "ground: [C]", "springs:\n  - {name: tie, type: axial, nodes: "
+      "[C, T], stiffness: 3.0e5}\n", ""), "free-floating structure", "members.bars"),
+    (("ground: [A, B, C]", "ground: [A, B]", "masses: {T: 200}", "masses: {T: 200, C: 50}"),
+     "joins the elastic structure to a load", "springs.tie"),
 ])
 def test_what_the_structure_refuses(tmp_path, edit, words, entry):
     text = TRUSS2
