@@ -89,6 +89,8 @@ def test_pendulum_geometry_and_rates_by_hand(pend):
     # the recorder's view: span lengths and places
     ev = st.evaluate(0.3, Q, V, np.array([True]))
     np.testing.assert_allclose(st.span_lengths(ev), [9.0], rtol=1e-14)
+    vp2 = V @ V - ev_ ** 2                     # the recorder's state: the multiplier
+    np.testing.assert_allclose(ev.S, [M * G * math.cos(0.7) + M * vp2 / 9.0], rtol=1e-13)
     X = st.place(0.3, Q, V)[0]
     np.testing.assert_allclose(X[mech.free[0]][[0, 2]], Q, rtol=1e-15)
     # the tension stiffness d(G^T S)/dq = S / l (I - e e^T)
@@ -208,8 +210,17 @@ def test_jerk_of_a_pendulum_rope(pend):
     va = 0.1 * np.array([math.cos(th), math.sin(th)]) + 2.0 * e
     taut = np.array([True])
     v1, note, W, D = st.switch(0.0, qa, va, taut, 0)
-    assert not taut[0] and note.endswith(" (separates again)"), note
+    assert not taut[0] and note == f": jerk, impulse {M * 2.0:.7g} N s (separates again)"
     np.testing.assert_allclose(v1, va - 2.0 * e, atol=1e-14)
+    # horizontal rope (th = 90 deg), tangential speed with m v^2 / l = 0.5 N: after the
+    # jerk the rope holds 0.5 N (> 0): it stays taut
+    e = np.array([1.0, 0.0])
+    vt = math.sqrt(0.5 * 10 / M)
+    taut = np.array([True])
+    v1, note, W, D = st.switch(0.0, np.array([10.0, 10.0]), np.array([1.0, vt]), taut, 0)
+    assert taut[0] and note == f": jerk, impulse {M * 1.0:.7g} N s", note
+    np.testing.assert_allclose(st.state(0.0, np.array([10.0, 10.0]), v1, taut).S, [0.5],
+                               rtol=1e-12)
     slack = np.array([False])
     assert st.switch(0.0, q, V, slack, 0) == (V, "", 0.0, 0.0)
 
@@ -293,6 +304,8 @@ def test_jerk_by_a_hauling_drum(tmp_path):
     assert note == f": jerk, impulse {P:.7g} N s", note
     np.testing.assert_allclose(W, P * 1.0, rtol=1e-13)
     np.testing.assert_allclose(D, 0.5 * m * 0.5 ** 2, rtol=1e-12)
+    ev = st.evaluate(t, q, np.array([1.0]), taut)
+    np.testing.assert_allclose(st.span_lengths(ev), [2.0, 40 - 21.5], rtol=1e-13)
     # breakpoint at t = 1: acceleration 2 rad/s^2 * R = 1 m/s^2 before, 0 after
     geo = st.geometry(1.0, mech.q0, np.zeros(1), st.kin(1.0))
     q1 = mech.q0 + (geo["L"] - geo["L0"])
@@ -361,6 +374,9 @@ def test_massless_block_static_split_and_velocity(tmp_path):
     q[3] -= 0.05
     taut = np.array([True, True])
     qe, ve = C.algebraic_state(st, t, q, np.zeros(4), taut)
+    # the load moving up at 0.2 m/s as well (the drum's and the load's parts add):
+    # zB' = (EA_s / l_s) zL' / (4 EA_h / L_h + EA_s / l_s) from the load
+    _, ve2 = C.algebraic_state(st, t, q, np.array([0.0, 0.2, 0.0, 0.0]), taut)
     zB = _block_equilibrium(q[1], L0h_t, L0s)
     np.testing.assert_allclose(qe[3], zB, atol=1e-10)
     np.testing.assert_allclose(qe[2], 0.0, atol=1e-10)
@@ -369,6 +385,9 @@ def test_massless_block_static_split_and_velocity(tmp_path):
     vz = -2 * EA_H * (-R_DRUM * W_DRUM / lam / L0h_t) / (4 * EA_H / Lh + EA_S / ls)
     np.testing.assert_allclose(ve[3], vz, rtol=1e-6)
     assert abs(ve[2]) < 1e-9 * abs(vz)
+    vz_load = EA_S / ls * 0.2 / (4 * EA_H / Lh + EA_S / ls)
+    np.testing.assert_allclose(ve2[3], vz + vz_load, rtol=1e-6)
+    np.testing.assert_array_equal(ve2[:2], [0.0, 0.2])
     np.testing.assert_array_equal(ve[:2], 0.0)
     # algebraic_velocity directly: the other coordinates' v and a kept
     ev = st.ops.evaluate(t, qe, np.zeros(4), taut, st.ops.kin(t))
@@ -382,3 +401,140 @@ def test_massless_block_static_split_and_velocity(tmp_path):
     # a block held by nothing: exit 1 naming it and the time
     with pytest.raises(AnalysisError, match=r"at t = 1\.25 s the massless block\(s\) B "):
         C._solve_blocks(st, 1.25, np.zeros((2, 2)), np.zeros(2))
+    # both ropes slack: nothing holds the block (through the helpers)
+    for call in (lambda: C.algebraic_state(st, t, qe, np.zeros(4), np.array([False, False])),
+                 lambda: C.algebraic_velocity(st, t, qe, np.zeros(4), a_in, v0, 0.1,
+                                              st.ops.evaluate(t, qe, np.zeros(4),
+                                                              np.array([False, False]),
+                                                              st.ops.kin(t)),
+                                              np.array([False, False]))):
+        with pytest.raises(AnalysisError, match=r"at t = 0\.5 s the massless block\(s\) B "):
+            call()
+
+
+# ------------------------------------------------------------ geometry, second round
+def test_extra_length_enters_both_lengths(tmp_path):
+    """A rope with 5 m of extra length (on the drum, terminations): L = l + 5 and
+    L0 = L_ref = 10 + 5, so g = l - 10 as without it."""
+    st, _ = stepper(tmp_path, PENDULUM.replace("path: [S, H]", "extra_length: 5.0, "
+                                               "path: [S, H]"), "  duration: 1\n")
+    geo = st.geometry(0.3, Q, V, st.kin(0.3))
+    np.testing.assert_allclose(geo["L"], [14.0], rtol=1e-14)
+    np.testing.assert_allclose(geo["L0"], [15.0], rtol=1e-14)
+
+
+SLING = """cranefe: 1
+name: hook and load on a sling
+plane: xz
+nodes:
+  S: [0, 0, 30]
+  H: [0, 0, 20]
+  B: [0, 0, 17]
+ground: [S]
+masses: {H: 200, B: 2000}
+ropes:
+  hoist: {EA: 1.0e7, path: [S, H]}
+  sling: {EA: 5.0e6, path: [H, B]}
+"""
+
+
+def test_rates_of_a_span_whose_both_ends_move(tmp_path):
+    """The sling between two moving loads H and B: g' = e . (v_B - v_H),
+    gamma = (|dv|^2 - (e . dv)^2) / l with dv = v_B - v_H (no prescribed motion)."""
+    st, mech = stepper(tmp_path, SLING, "  duration: 1\n")
+    q = np.array([0.5, 20.0, 1.5, 17.2])          # (x_H, z_H, x_B, z_B)
+    v = np.array([0.3, -0.2, -0.4, 0.6])
+    geo = st.geometry(0.0, q, v, st.kin(0.0))
+    d = q[2:] - q[:2]
+    l = np.linalg.norm(d)
+    e = d / l
+    dv = v[2:] - v[:2]
+    np.testing.assert_allclose(geo["l"][1], l, rtol=1e-14)
+    np.testing.assert_allclose(geo["gdot"][1], e @ dv, rtol=1e-13)
+    np.testing.assert_allclose(geo["gamma"][1], (dv @ dv - (e @ dv) ** 2) / l, rtol=1e-12)
+    np.testing.assert_allclose(geo["G"][1], np.r_[-e, e], atol=1e-15)
+
+
+TROLLEY = """cranefe: 1
+name: a load below a travelling trolley
+nodes:
+  O: [0, 0, 0]
+  K: [5, 0, 20]
+  H: [5, 0, 16]
+ground: [O]
+masses: {H: 1000}
+bodies:
+  trolley: {mass: 500, com: [5, 0, 20], inertia: [10, 10, 10], nodes: [K]}
+joints:
+  - {name: travel, type: slider, bodies: [ground, trolley], at: K, axis: [1, 0, 0],
+     range: [-20, 20]}
+ropes:
+  hoist: {EA: 1.0e9, path: [K, H]}
+"""
+
+
+def test_gamma_with_an_accelerating_trolley(tmp_path):
+    """The trolley K accelerates at 0.5 m/s^2 along x (a speed table; at t = 1 s it is
+    at x = 5.25 m moving at 0.5 m/s), the load (sway on) 3 m aside and 4 m below it
+    (e = (3, 0, -4)/5 from the trolley) moving with it: gamma = e . (A_load -
+    A_trolley) with dV = 0, and the load's acceleration is the unknown (0 in gamma):
+    gamma = -0.3. (With sway off a load hangs vertically below its carrier and is
+    carried horizontally, so e . (A_load - A_carrier) = 0 either way.)"""
+    st, mech = stepper(tmp_path, TROLLEY, "  duration: 4\n  drives:\n    travel: {slider: "
+                       "travel, profile: {type: table, speed: [[0, 0], [4, 2.0]]}}\n")
+    t = 1.0
+    kin = st.kin(t)
+    np.testing.assert_allclose(kin[0][1], [5.25, 0, 20], atol=1e-12)
+    np.testing.assert_allclose(kin[1][1], [0.5, 0, 0], atol=1e-12)
+    geo = st.geometry(t, np.array([8.25, 0.0, 16.0]), np.array([0.5, 0.0, 0.0]), kin)
+    np.testing.assert_allclose(geo["e"][0], [0.6, 0.0, -0.8], atol=1e-12)
+    np.testing.assert_allclose(geo["gamma"], [-0.3], atol=1e-12)
+
+
+TWO_DRUMS = """cranefe: 1
+name: two loads on two torque-driven drums
+plane: xz
+nodes:
+  W1: [-2, 0, 40]
+  S1: [0, 0, 40]
+  H1: [0, 0, 20]
+  W2: [8, 0, 40]
+  S2: [10, 0, 40]
+  H2: [10, 0, 25]
+ground: [W1, S1, W2, S2]
+masses: {H1: 1000, H2: 500}
+drums:
+  d1: {node: W1, radius: 0.5, inertia: 10}
+  d2: {node: W2, radius: 0.25, inertia: 4}
+ropes:
+  r1: {EA: 1.0e9, path: [d1, S1, H1]}
+  r2: {EA: 1.0e9, path: [d2, S2, H2]}
+"""
+
+
+def test_rows_of_two_drum_coordinates(tmp_path):
+    """Two drums under torques (their angles coordinates 2 and 3 after the loads'
+    heights): G = [[-1, 0, R1, 0], [0, -1, 0, R2]] (the vertical falls above the loads,
+    dL/dz = -1; dg/dtheta = R)."""
+    st, mech = stepper(tmp_path, TWO_DRUMS, "  duration: 1\n  drives:\n"
+                       "    a: {drum: d1, torque: 5000}\n    b: {drum: d2, torque: 1300}\n",
+                       effects="{rope_elasticity: false, sway: false}")
+    assert mech.n == 4 and mech.nx == 2
+    geo = st.geometry(0.0, mech.q0, np.zeros(4), st.kin(0.0))
+    np.testing.assert_allclose(geo["G"], [[-1, 0, 0.5, 0], [0, -1, 0, 0.25]], atol=1e-15)
+    np.testing.assert_array_equal(st.wq, [1, 1, 0.5, 0.25])
+
+
+def test_kinematics_at_a_breakpoint_of_a_travelling_trolley(tmp_path):
+    """The trolley's speed table bends at t = 1 s (0.5 m/s reached, then constant): at
+    the breakpoint the left limit has the trolley's acceleration 0.5 m/s^2, the right
+    limit 0, both with its position 5.25 m and velocity 0.5 m/s; off the breakpoint the
+    kinematics unchanged."""
+    st, mech = stepper(tmp_path, TROLLEY, "  duration: 4\n  drives:\n    travel: {slider: "
+                       "travel, profile: {type: table, speed: [[0, 0], [1, 0.5], [4, 0.5]]}}\n")
+    for side, acc in ((-1, 0.5), (1, 0.0)):
+        X, Vk, A, _ = st.kin_side(1.0, side)
+        np.testing.assert_allclose(X[1], [5.25, 0, 20], atol=1e-12)
+        np.testing.assert_allclose(Vk[1], [0.5, 0, 0], atol=1e-12)
+        np.testing.assert_allclose(A[1], [acc, 0, 0], atol=1e-6)
+    assert st.kin_side(0.5, -1) is st.kin(0.5)
