@@ -371,3 +371,12 @@ def test_rope_over_the_tip_of_a_luffed_boom(tmp_path):
     np.testing.assert_allclose(X[model.node_names.index("BT")],
                                R @ (BT0 - Fp + [q[2], 0, q[3]]) + Fp,
                                atol=1e-12)
+    # the tip's velocity with u' = (0.2, -0.1): R' (X - F + u) + R u' (the hinge point
+    # F fixed: p = F - R F, p' = -R' F), R' = w [a]x R, w = 0.05 t, a = (0, -1, 0)
+    v[2:4] = [0.2, -0.1]
+    ax = np.array([[0, 0, -1.0], [0, 0, 0], [1.0, 0, 0]])        # [a]x
+    dR = 0.05 * t * ax @ R
+    Vn = mech.place(t, q, v)[1]
+    np.testing.assert_allclose(Vn[model.node_names.index("BT")],
+                               dR @ (BT0 - Fp + [q[2], 0, q[3]]) + R @ [0.2, 0, -0.1],
+                               atol=1e-12)
