@@ -380,3 +380,19 @@ def test_rope_over_the_tip_of_a_luffed_boom(tmp_path):
     np.testing.assert_allclose(Vn[model.node_names.index("BT")],
                                dR @ (BT0 - Fp + [q[2], 0, q[3]]) + R @ [0.2, 0, -0.1],
                                atol=1e-12)
+
+
+def test_elastic_jib_with_a_drum_coordinate(tmp_path):
+    """A torque-driven drum (its angle a coordinate after the elastic ones) hoisting over
+    the one-element jib's tip: the static state holds the load with S = 1500 g (the
+    span to the hook vertical) and the drum with R S (R = 0.2 m); the elastic rows are
+    the structure's own (the drum's row is not one of them)."""
+    model = load(write(tmp_path, JIB, "  duration: 1\n  drives:\n    h: {drum: hoist, "
+                       f"torque: {0.2 * 1500 * 9.81}}}\n", IYVAL=2.0e-2, NEL=1,
+                       MASS="lumped", GVAL=-9.81))
+    mech = mechanism(model)
+    assert mech.n == mech.nc + mech.nJ + mech.flex.nu + 1
+    np.testing.assert_allclose(mech.S0, [1500 * 9.81], rtol=1e-9)
+    np.testing.assert_allclose(mech.hold_torque, [0.2 * 1500 * 9.81], rtol=1e-9)
+    ev = mech.evaluate(0.0, mech.q0, np.zeros(mech.n), mech.taut0)
+    assert np.abs(ev.F).max() < 1e-6 * 1500 * 9.81
