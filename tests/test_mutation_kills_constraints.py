@@ -130,7 +130,7 @@ def test_force_rate_along_the_circle(pend):
     w = -math.sqrt(2 * G / 10 * (math.cos(th) - math.cos(th0)))     # swinging down
     q = np.array([10 * math.sin(th), 10 - 10 * math.cos(th)])
     v = 10 * w * np.array([math.cos(th), math.sin(th)])
-    a, ev = st.accel(0.0, q, v, np.array([True]))
+    _, ev = st.accel(0.0, q, v, np.array([True]))
     np.testing.assert_allclose(ev.S, [M * G * (3 * math.cos(th) - 2 * math.cos(th0))],
                                rtol=1e-12)
     F, dS, lst = ev._fr
@@ -178,7 +178,7 @@ def test_projection_onto_two_ropes(tmp_path):
     projects back onto H (the circles' intersection) to 1e-12 m; `once` makes a single
     correction, which leaves the second-order residual of the curved constraints
     (|g| ~ 0.3^2 / 11 ~ 1e-2: between 1e-6 and 0.1 m)."""
-    st, mech = stepper(tmp_path, VEE, "  duration: 1\n")
+    st, _ = stepper(tmp_path, VEE, "  duration: 1\n")
     act = np.array([0, 1])
     q0 = np.array([0.3, 0.2])
     q, _ = st.project(0.0, q0, np.zeros(2), act, st.kin(0.0))
@@ -448,7 +448,7 @@ ropes:
 def test_rates_of_a_span_whose_both_ends_move(tmp_path):
     """The sling between two moving loads H and B: g' = e . (v_B - v_H),
     gamma = (|dv|^2 - (e . dv)^2) / l with dv = v_B - v_H (no prescribed motion)."""
-    st, mech = stepper(tmp_path, SLING, "  duration: 1\n")
+    st, _ = stepper(tmp_path, SLING, "  duration: 1\n")
     q = np.array([0.5, 20.0, 1.5, 17.2])          # (x_H, z_H, x_B, z_B)
     v = np.array([0.3, -0.2, -0.4, 0.6])
     geo = st.geometry(0.0, q, v, st.kin(0.0))
@@ -487,7 +487,7 @@ def test_gamma_with_an_accelerating_trolley(tmp_path):
     A_trolley) with dV = 0, and the load's acceleration is the unknown (0 in gamma):
     gamma = -0.3. (With sway off a load hangs vertically below its carrier and is
     carried horizontally, so e . (A_load - A_carrier) = 0 either way.)"""
-    st, mech = stepper(tmp_path, TROLLEY, "  duration: 4\n  drives:\n    travel: {slider: "
+    st, _ = stepper(tmp_path, TROLLEY, "  duration: 4\n  drives:\n    travel: {slider: "
                        "travel, profile: {type: table, speed: [[0, 0], [4, 2.0]]}}\n")
     t = 1.0
     kin = st.kin(t)
@@ -537,7 +537,7 @@ def test_kinematics_at_a_breakpoint_of_a_travelling_trolley(tmp_path):
     the breakpoint the left limit has the trolley's acceleration 0.5 m/s^2, the right
     limit 0, both with its position 5.25 m and velocity 0.5 m/s; off the breakpoint the
     kinematics unchanged."""
-    st, mech = stepper(tmp_path, TROLLEY, "  duration: 4\n  drives:\n    travel: {slider: "
+    st, _ = stepper(tmp_path, TROLLEY, "  duration: 4\n  drives:\n    travel: {slider: "
                        "travel, profile: {type: table, speed: [[0, 0], [1, 0.5], [4, 0.5]]}}\n")
     for side, acc in ((-1, 0.5), (1, 0.0)):
         X, Vk, A, _ = st.kin_side(1.0, side)
