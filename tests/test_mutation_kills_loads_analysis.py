@@ -1,0 +1,235 @@
+"""Kill tests for cranefe/analysis/loads/analysis.py, runs.py and scene.py
+(tools/mutation.py loads_analysis, loads_runs, loads_scene; docs/testing.md, "Mutation
+testing"): the whole EN 13001-2 load table of a single mass on an elastic rope, every
+entry written out by hand, on a coarse step so that it runs in a few seconds.
+
+The crane: a drum (R = 0.25 m) hauls a 2-fall tackle carrying m = 5000 kg; the rope is
+30 + 2 x 20 = 70 m long with EA = 3.15e6 N, so k = EA / 70 = 45 000 N/m and, with the
+drum held by its rigid drive, w^2 = n^2 k / m = 36 s^-2 (w = 6 rad/s); the hook moves
+R / n = 0.125 m per drum radian. The closed forms (docs/loads.md, "Single-mass
+references"; EN 13001-2 Tables 2 and 3):
+
+- lift-off at the steady hook speed v (rigid drive): the rope force rises until n S = m g
+  at t = m g / (n k n v) = g / (w^2 v); the load then starts from rest while the rope end
+  moves at v: phi2 = 1 + v w / g;
+- hoist start at a constant hook acceleration a = v_max / ramp (jerk time 0, a step of
+  acceleration): the dynamic force m a (1 - cos w t), phi5 = 2; HD5 (lift-off at v = 0,
+  then this start): phi2 = 1 + phi5 a / g;
+- sudden release of dm = r m: phi3 = 1 - 2 r (beta3 = 1);
+- EN 13001-2 Table 2: phi2 = phi2,min + beta2 v_h, (1.05, 0.17) HC1, (1.10, 0.34) HC2,
+  (1.15, 0.51) HC3, (1.20, 0.68) HC4; Table 3: v_h = v_max (HD1), creep (HD2, HD3),
+  0.5 v_max (HD4), 0 (HD5); phi6 = 0.5 (1 + phi2); phi3 = 1 - r (1 + beta3), beta3 = 1
+  (fast) or 0.5 (slow).
+
+Tolerances: the trapezoidal rule keeps the amplitude of an undamped oscillator and the
+peaks are interpolated (cubic Hermite), so a peak's error is O((w h)^4) = 1.3e-5 at
+w h = 0.06; 1e-4 below. Exact numbers (speeds, classes, lines) to 1e-12.
+"""
+
+import functools
+
+import numpy as np
+import pytest
+
+import cranefe
+from cranefe.errors import AnalysisError, ModelError
+from cranefe.model import load
+
+G = 9.81
+M, FALLS, R, EA = 5000.0, 2, 0.25, 3.15e6
+K = EA / 70.0
+W = np.sqrt(FALLS**2 * K / M)                        # 6 rad/s
+S0 = M * G / FALLS
+TOL = 1e-4
+LINES = {"HC1": (1.05, 0.17), "HC2": (1.10, 0.34), "HC3": (1.15, 0.51),
+         "HC4": (1.20, 0.68)}
+
+MODEL = f"""cranefe: 1
+name: single mass on an elastic rope
+plane: xz
+nodes: {{D: [0, 0, 0], S: [0, 0, 30], H: [0, 0, 10]}}
+ground: [D, S]
+masses: {{H: {M}}}
+drums:
+  hoist: {{node: D, radius: {R}, inertia: 500.0, brake: false}}
+ropes:
+  hoist_rope: {{EA: {EA}, path: [hoist, S, {{node: H, falls: {FALLS}}}]}}
+"""
+
+SCENE = """cranefe: 1
+scene: single mass loads
+model: {model}
+analysis:
+  type: loads
+  hoist: {{drum: hoist, load: H, speed: 0.5, creep: 0.125, ramp: 1.0, jerk_time: 0}}
+  release: {{fraction: 0.25, time: 0}}
+  after_lift_off: 0.6
+  time_step: 0.01
+{extra}"""
+
+
+def write(tmp, extra="", name="scene.yaml"):
+    tmp.mkdir(parents=True, exist_ok=True)
+    (tmp / "model.yaml").write_text(MODEL)
+    path = tmp / name
+    path.write_text(SCENE.format(model=tmp / "model.yaml", extra=extra))
+    return path
+
+
+@functools.lru_cache(maxsize=None)
+def table():
+    """The whole load table, computed once per session (mutmut's forked runs share it)."""
+    import tempfile
+    from pathlib import Path
+    tmp = Path(tempfile.mkdtemp(prefix="loads-kill-"))
+    return cranefe.loads(str(write(tmp)))
+
+
+def phi2(v):
+    return 1 + v * W / G
+
+
+def line(hc, v):
+    a, b = LINES[hc]
+    return a + b * v
+
+
+def test_phi2_curve_drive_classes_and_the_class_it_behaves_like():
+    r = table()
+    assert r.hook_per_drum == pytest.approx(R / FALLS, rel=1e-12)
+    p2 = r.factors["phi2"]
+    v = [0.125, 0.25, 0.375, 0.5]
+    assert [p["v_h_m_s"] for p in p2["curve"]] == pytest.approx(v, rel=1e-12)
+    for p in p2["curve"]:
+        assert p["value"] == pytest.approx(phi2(p["v_h_m_s"]), rel=TOL)
+        assert p["rope"] == "hoist_rope"
+        # the lift-off time g / (w^2 v): the force rises linearly, located to 1e-9
+        assert p["lift_off_s"] == pytest.approx(G / (W**2 * p["v_h_m_s"]), rel=1e-6)
+        # the peak a quarter period after lift-off (the relative motion v/w sin(w t))
+        assert p["peak_time_s"] - p["lift_off_s"] == pytest.approx(np.pi / (2 * W),
+                                                                   abs=0.02)
+        assert p["simulation"] == f"lift-off {p['v_h_m_s']:.4g} m/s"
+    # HC1 and HC2 are exceeded at full speed, HC3 covers every point
+    cls = p2["behaves_like"]
+    assert cls["within"] == "HC3"
+    # the nearest line in the least-squares sense: HC2 (rms 0.041 against 0.107 for HC1, 0.119 for HC3)
+    rms = {hc: np.sqrt(np.mean([(phi2(x) - line(hc, x)) ** 2 for x in v])) for hc in LINES}
+    assert cls["closest"] == min(rms, key=rms.get) == "HC2"
+    for hc in LINES:
+        ex = max(phi2(x) - line(hc, x) for x in v)
+        assert cls["excess"][hc] == pytest.approx(ex, abs=TOL)
+    assert p2["hoisting_class"] == "HC3"
+    assert p2["hoisting_class_source"].startswith("behaves like")
+    # the declared drive class HD1: full speed
+    assert p2["drive_class"] == "HD1" and p2["v_h_m_s"] == 0.5
+    assert p2["value"] == pytest.approx(phi2(0.5), rel=TOL)
+    assert p2["standard"] == pytest.approx(line("HC3", 0.5), rel=1e-12)
+    assert p2["rope"] == "hoist_rope" and p2["simulation"] == "lift-off 0.5 m/s"
+    assert p2["lift_off_s"] == pytest.approx(G / (W**2 * 0.5), rel=1e-6)
+    d = p2["drive_classes"]
+    assert list(d) == ["HD1", "HD2", "HD3", "HD4", "HD5"]
+    speeds = {"HD1": 0.5, "HD2": 0.125, "HD3": 0.125, "HD4": 0.25, "HD5": 0.0}
+    a = 0.5 / 1.0                                       # hook acceleration of the start
+    for hd, vh in speeds.items():
+        assert d[hd]["v_h_m_s"] == pytest.approx(vh, abs=1e-12)
+        exact = 1 + 2 * a / G if hd == "HD5" else phi2(vh)
+        assert d[hd]["value"] == pytest.approx(exact, rel=TOL), hd
+        for hc in LINES:
+            assert d[hd]["standard"][hc] == pytest.approx(line(hc, vh), rel=1e-12)
+    assert d["HD5"]["simulation"] == "hoist start"
+
+
+def test_phi3_phi5_phi6_and_the_rigid_crane():
+    f = table().factors
+    p3 = f["phi3"]
+    assert p3["value"] == pytest.approx(1 - 2 * 0.25, abs=TOL)
+    assert p3["beta3_equivalent"] == pytest.approx(1.0, abs=TOL / 0.25)
+    assert p3["standard"] == pytest.approx(1 - 0.25 * 2, rel=1e-12)
+    assert p3["standard_slow"] == pytest.approx(1 - 0.25 * 1.5, rel=1e-12)
+    assert p3["rope"] == "hoist_rope" and p3["dm_over_m"] == 0.25
+    # the lowest force half a period of the remaining mass after the release
+    assert p3["peak_time_s"] == pytest.approx(np.pi / (W / np.sqrt(0.75)), abs=0.02)
+    assert "slack" not in p3
+    p5 = f["phi5"]["hoist"]
+    a = 0.5
+    assert p5["value"] == pytest.approx(2.0, rel=TOL)
+    assert p5["acceleration_m_s2"] == pytest.approx(a, rel=1e-12)
+    assert p5["rigid_body_force_N"] == pytest.approx(S0 * a / G, rel=1e-12)
+    assert p5["peak_force_N"] == pytest.approx(S0 + 2 * S0 * a / G, rel=TOL)
+    assert p5["peak_time_s"] == pytest.approx(np.pi / W, abs=0.02)
+    assert p5["braking"]["lowest_force_N"] == pytest.approx(S0 - 2 * S0 * a / G, rel=TOL)
+    assert p5["braking"]["slack"] is False and p5["braking"]["value"] == p5["value"]
+    assert p5["standard"] == [1.5, 2.0]                 # sudden: jerk time 0
+    assert p5["ramp_s"] == 1.0 and p5["jerk_time_s"] == 0.0
+    p6 = f["phi6"]
+    assert p6["value"] == pytest.approx(0.5 * (1 + phi2(0.5)), rel=TOL)
+    assert p6["standard"] == pytest.approx(0.5 * (1 + line("HC3", 0.5)), rel=1e-12)
+    assert "HC3" in p6["from"] and "HD1" in p6["from"]
+    p1 = f["phi1"]
+    assert p1["value"] == 1.0 and p1["lower"] == 1.0 and p1["by_mass"] == {}
+    assert p1["standard_range"] == [0.9, 1.1]
+    assert f["phi4"]["value"] is None and f["phi7"]["value"] is None
+    assert f["phi7"]["standard"] == [1.25, 1.6]
+
+
+def test_simulations_say_what_was_run():
+    r = table()
+    names = [t.name for t in r.simulations]
+    assert names == ["lift-off 0.5 m/s", "lift-off 0.375 m/s", "lift-off 0.25 m/s",
+                     "lift-off 0.125 m/s", "hoist start", "release"]
+    lift = r.simulations[0]
+    assert lift.parameters["drum_speed_rad_s"] == pytest.approx(0.5 / (R / FALLS))
+    assert lift.parameters["initial"] == "grounded" and lift.parameters["loads"] == ["H"]
+    assert lift.parameters["time_step_s"] == 0.01
+    # each run lasts its lift-off plus after_lift_off (the first guess 1 s was enough
+    # for the fastest; the slower ones are guessed from it by 1/v, 5 % longer)
+    t_full = G / (W**2 * 0.5)
+    assert lift.duration == pytest.approx(1.0 + 0.6)
+    for t, v in zip(r.simulations[1:4], (0.375, 0.25, 0.125)):
+        assert t.duration == pytest.approx(1.05 * t_full * 0.5 / v + 0.6, rel=1e-6)
+    start = r.simulations[4]
+    assert start.duration == pytest.approx(1.0 + 0.6)
+    assert start.parameters["initial"] == "static"
+    rel = r.simulations[5]
+    assert rel.parameters["released_kg"] == pytest.approx(0.25 * M)
+    assert rel.parameters["mass_kg"] == M and rel.duration == pytest.approx(0.6)
+    doc = r.to_dict()
+    assert doc["hoist"]["hook_per_drum_m_rad"] == pytest.approx(R / FALLS)
+    assert doc["hoist"]["creep_m_s"] == 0.125 and doc["hoist"]["speed_m_s"] == 0.5
+    assert r.warnings == ()
+
+
+def test_only_phi6_runs_the_declared_drive_class_alone(tmp_path):
+    """only = [phi6] (a sweep's output): phi2 from the declared class's speed alone
+    (HD4: 0.5 v_max), phi6 from it; a declared hoisting class is used as given."""
+    r = cranefe.loads(str(write(tmp_path, "  drive_class: HD4\n  hoisting_class: HC2\n")),
+                      only=["phi6"])
+    assert set(r.factors) == {"phi2", "phi6"}
+    p2 = r.factors["phi2"]
+    assert [p["v_h_m_s"] for p in p2["curve"]] == [0.25]
+    assert p2["value"] == pytest.approx(phi2(0.25), rel=TOL)
+    assert p2["standard"] == pytest.approx(line("HC2", 0.25), rel=1e-12)
+    assert p2["hoisting_class"] == "HC2" and p2["hoisting_class_source"] == "declared"
+    assert list(p2["drive_classes"]) == ["HD4"]
+    assert r.factors["phi6"]["value"] == pytest.approx(0.5 * (1 + phi2(0.25)), rel=TOL)
+    assert [t.name for t in r.simulations] == ["lift-off 0.25 m/s"]
+
+
+def test_only_phi2_of_hd5_is_the_hoist_start(tmp_path):
+    """Drive class HD5 lifts off at v = 0 and accelerates: only the start is run, and
+    the curve is that one point."""
+    r = cranefe.loads(str(write(tmp_path, "  drive_class: HD5\n")), only=["phi2"])
+    p2 = r.factors["phi2"]
+    # the start also gives phi5 of the hoist, reported with it
+    assert set(r.factors) == {"phi2", "phi5"}
+    assert r.factors["phi5"]["hoist"]["value"] == pytest.approx(2.0, rel=TOL)
+    assert p2["value"] == pytest.approx(1 + 2 * 0.5 / G, rel=TOL)
+    assert p2["v_h_m_s"] == 0.0 and p2["simulation"] == "hoist start"
+    assert p2["standard"] == pytest.approx(LINES[p2["hoisting_class"]][0], rel=1e-12)
+    assert [t.name for t in r.simulations] == ["hoist start"]
+
+
+def test_only_phi1_runs_full_speed_only(tmp_path):
+    r = cranefe.loads(str(write(tmp_path)), only=["phi1"])
+    assert set(r.factors) == {"phi1"}
+    assert [t.name for t in r.simulations] == ["lift-off 0.5 m/s"]
