@@ -43,7 +43,7 @@ A2 = np.array([1.0, -1.0, 0.0])
 S0 = np.array([(MA + MB) * G, MB * G])    # hanging at rest
 
 
-def model_text(psi1=0.0, psi2=0.0):
+def model_text(psi1=0.0, psi2=0.0, drum=""):
     return f"""cranefe: 1
 name: chain on a drum
 plane: xz
@@ -51,7 +51,7 @@ nodes: {{D: [0, 0, 0], S: [0, 0, 30], A: [0, 0, 10], B: [0, 0, 4]}}
 ground: [D, S]
 masses: {{A: {MA}, B: {MB}}}
 drums:
-  hoist: {{node: D, radius: {R}, inertia: {J}}}
+  hoist: {{node: D, radius: {R}, inertia: {J}{drum}}}
 ropes:
   upper: {{EA: {EA1}, psi: {psi1}, path: [hoist, S, A]}}
   lower: {{EA: {EA2}, psi: {psi2}, path: [A, B]}}
@@ -59,16 +59,16 @@ effects: {{sway: false}}
 """
 
 
-def run(tmp_path, analysis, effects="{sway: false}", psi=(0.0, 0.0), name="s"):
+def run(tmp_path, analysis, effects="{sway: false}", psi=(0.0, 0.0), name="s", drum=""):
     model = tmp_path / f"{name}_model.yaml"
-    model.write_text(model_text(*psi))
+    model.write_text(model_text(*psi, drum=drum))
     path = tmp_path / f"{name}.yaml"
     path.write_text(f"cranefe: 1\nscene: t\nmodel: {model}\neffects: {effects}\n"
                     f"analysis:\n  type: transient\n{analysis}")
     return simulate(load(path))
 
 
-def hand_matrices():
+def hand_matrices(J=J):
     K = C1 * np.outer(A1, A1) + C2 * np.outer(A2, A2)
     M = np.diag([MA, MB, J])
     return K, M
@@ -90,9 +90,9 @@ def trapezoidal(Mm, Cm, Km, force, h, n):
     return out[:, :k], out[:, k:]
 
 
-def free_drum_modes():
+def free_drum_modes(J=J):
     """Rigid shape (by hand) and the two elastic modes (eigh), mass-normalised."""
-    K, M = hand_matrices()
+    K, M = hand_matrices(J)
     r = np.array([R, R, 1.0])
     r /= np.sqrt(r @ M @ r)
     w2, V = sla.eigh(K, M)
@@ -117,6 +117,7 @@ def test_free_drum_step_torque_one_mode_with_and_without_static_correction(tmp_p
                         f"  modes: 1\n  static_correction: {str(correction).lower()}\n"
                         f"  drums:\n    hoist: {{torque: {torque}}}\n")
     assert res.modes == 1 and res.labels == ("node A z", "node B z", "drum hoist")
+    assert res.warnings == []                   # one mode asked, one kept: no warning
     t = h * np.arange(n + 1)
     z, zv = (r_ @ F) * t**2 / 2, (r_ @ F) * t
     eta, etav = trapezoidal(np.eye(1), np.zeros((1, 1)), np.diag([w[0] ** 2]),
@@ -233,26 +234,30 @@ def test_prescribed_drum_ramp_with_exact_damping_one_mode(tmp_path, correction):
 
 
 def test_linear_motor_one_mode_with_static_correction(tmp_path):
-    """A linear motor (gear 1) drives the free drum: torque Ms (1 - w / ns) at the drum
+    """A linear motor drives the free drum through a gear i = 3 (rotor 0.5 kg m^2: the
+    drum's inertia J + 0.5 i^2): torque at the drum i Ms (1 - i w / ns) at the drum
     speed w of the retained modes, so the modal equations are linear, with the viscous
-    term Ms / ns p p^T (p the drum's row of (Phi_r, Phi_1)); the static correction adds
-    X e_drum (Ms (1 - w / ns) - R S0)."""
-    Ms, ns, h, n = 20000.0, 20.0, 2e-3, 150
-    r_, w, V = free_drum_modes()
+    term i^2 Ms / ns p p^T (p the drum's row of (Phi_r, Phi_1)); the static correction
+    adds X e_drum (i Ms (1 - i w / ns) - R S0)."""
+    Ms, ns, gear, h, n = 8000.0, 60.0, 3.0, 2e-3, 150
+    Jd = J + 0.5 * gear**2
+    r_, w, V = free_drum_modes(Jd)
     P = np.c_[r_, V[:, 0]]
     p = P[2]
     res = run(tmp_path, f"  duration: {h * n}\n  time_step: {h}\n  method: modal\n"
                         f"  modes: 1\n  drums:\n    hoist: {{motor: {{stall_torque: {Ms}, "
-                        f"synchronous_speed: {ns}}}}}\n")
-    x, xv = trapezoidal(np.eye(2), Ms / ns * np.outer(p, p), np.diag([0.0, w[0] ** 2]),
-                        lambda s: p * (Ms - R * S0[0]), h, n)
+                        f"synchronous_speed: {ns}}}}}\n",
+              drum=f", motor: {{rotor_inertia: 0.5, gear_ratio: {gear}}}")
+    x, xv = trapezoidal(np.eye(2), gear**2 * Ms / ns * np.outer(p, p),
+                        np.diag([0.0, w[0] ** 2]), lambda s: p * (gear * Ms - R * S0[0]),
+                        h, n)
     X = np.outer(V[:, 1], V[:, 1]) / w[1] ** 2
-    torque = Ms * (1 - xv @ p / ns) - R * S0[0]
+    torque = gear * Ms * (1 - gear * (xv @ p) / ns) - R * S0[0]
     q = x @ P.T + np.outer(torque, X[:, 2])
     close(res.q, q)
     close(res.v, xv @ P.T)
-    close(res.drum_torque[:, 0], Ms * (1 - res.drum_speed[:, 0] / ns))
-    assert xv[-1] @ p > 0.2 * ns                      # the motor is well under way
+    close(res.drum_torque[:, 0], gear * Ms * (1 - gear * res.drum_speed[:, 0] / ns))
+    assert gear * xv[-1] @ p > 0.2 * ns                # the motor is well under way
 
 
 def test_more_modes_asked_than_the_model_has(tmp_path):
@@ -349,3 +354,158 @@ def test_massless_node_gets_its_direct_static_response(tmp_path, correction):
     q = np.outer((r_ @ F) * t**2 / 2, r_) + np.outer(eta[:, 0], V[:, 0]) + X @ F
     close(res.q, q)
     close(res.v, np.outer((r_ @ F) * t, r_) + np.outer(etav[:, 0], V[:, 0]))
+
+
+def test_prescribed_drum_with_rope_mass_couples_through_the_mass(tmp_path):
+    """The upper rope with mass (2 elements per fall): the rope's mass couples the
+    prescribed drum with the free coordinates, so they see f(t) = -K_fp theta -
+    M_fp theta'' as well (theta'' jumps at t = 0 and at the ramp's end: the step ending
+    there takes its left limit, the next one starts from the right one, and a stored
+    state at the jump the right one). Here K and M are the assembled matrices (the
+    assembly has its own kill tests; they are this test's input); the reference is
+    the exact trapezoidal solution of the two retained modes of eigh(K_ff, M_ff) plus
+    the static correction of each load shape by the three left-out modes."""
+    from cranefe.system import assemble
+    text = model_text().replace("upper: {EA:", "upper: {mass_per_length: 3.0, EA:")
+    effects = "{sway: false, rope_mass: 2}"
+    wd, tr, h, n = 2.0, 0.1, 2e-3, 100
+    model = tmp_path / "rm_model.yaml"
+    model.write_text(text.replace("effects: {sway: false}", f"effects: {effects}"))
+    s = assemble(load(model))
+    d = s.dofs.labels.index("drum hoist")
+    free = [i for i in range(s.dofs.n) if i != d]
+    K, M = s.K.toarray(), s.M.toarray()
+    Kff, Mff, Kfp, Mfp = K[np.ix_(free, free)], M[np.ix_(free, free)], K[free, d], M[free, d]
+    assert np.abs(Mfp).max() > 0 and np.linalg.eigvalsh(Mff).min() > 0
+    w2, V = sla.eigh(Kff, Mff)
+    w, keep, out = np.sqrt(w2), V[:, :2], V[:, 2:]
+    X = out @ np.diag(1 / w2[2:]) @ out.T
+
+    def theta(t):
+        return np.where(t < tr, wd * t**2 / (2 * tr), wd * (t - tr / 2))
+
+    def accel(t, left=False):
+        return np.where((t < tr) | (left & (t <= tr)), wd / tr, 0.0) * (t > 0 or not left)
+
+    # trapezoidal rule on the two modes: force at a step's start (right limit) and end
+    # (left limit)
+    A = np.block([[np.zeros((2, 2)), np.eye(2)], [-np.diag(w2[:2]), np.zeros((2, 2))]])
+    L_, R_ = np.eye(4) - h / 2 * A, np.eye(4) + h / 2 * A
+
+    def g(t, left):
+        return np.r_[0, 0, keep.T @ (-Kfp * theta(t) - Mfp * accel(t, left))]
+
+    z, zs = np.zeros(4), [np.zeros(4)]
+    for i in range(n):
+        z = np.linalg.solve(L_, R_ @ z + h / 2 * (g(i * h, False) + g((i + 1) * h, True)))
+        zs.append(z)
+    zs = np.array(zs)
+    t = h * np.arange(n + 1)
+    q = zs[:, :2] @ keep.T + np.outer(theta(t), X @ -Kfp) + \
+        np.outer([accel(s_) for s_ in t], X @ -Mfp)
+    path = tmp_path / "rm.yaml"
+    path.write_text(f"cranefe: 1\nscene: t\nmodel: {model}\neffects: {effects}\n"
+                    f"analysis:\n  type: transient\n  duration: {h * n}\n  time_step: {h}\n"
+                    f"  method: modal\n  modes: 2\n"
+                    f"  drums:\n    hoist: {{speed: {wd}, ramp: {tr}}}\n")
+    res = simulate(load(path))
+    close(res.q[:, free], q)
+    close(res.v[:, free], zs[:, 2:] @ keep.T +
+          np.outer(np.where(t < tr, wd * t / tr, wd), X @ -Kfp))
+    # the inertial coupling matters: without it q differs by far more than 1e-9
+    assert np.abs(np.outer([accel(s_) for s_ in t], X @ Mfp)).max() > 1e-6 * np.abs(q).max()
+
+
+TWO_DRUMS = f"""cranefe: 1
+name: a chain on a drum and a mass on a second drum
+plane: xz
+nodes: {{D: [0, 0, 0], S: [0, 0, 30], A: [0, 0, 10], B: [0, 0, 4], E: [5, 0, 0],
+        T: [5, 0, 30], C: [5, 0, 20]}}
+ground: [D, S, E, T]
+masses: {{A: {MA}, B: {MB}, C: 2000}}
+drums:
+  aux: {{node: E, radius: 0.2, inertia: 10, brake: false}}
+  hoist: {{node: D, radius: {R}, inertia: {J}, brake: false}}
+ropes:
+  upper: {{EA: {EA1}, path: [hoist, S, A]}}
+  lower: {{EA: {EA2}, path: [A, B]}}
+  third: {{EA: 4.0e6, path: [aux, T, C]}}
+effects: {{sway: false}}
+"""
+
+
+def test_held_prescribed_drum_and_a_constant_speed(tmp_path):
+    """Two prescribed drums: `aux` at speed 0 (held: it loads nothing) listed first,
+    `hoist` at 1 rad/s from t = 0 (a constant profile), theta = t. The free coordinates
+    (u_A, u_B, u_C) see (c1 R t, 0, 0); all three modes kept: the full trapezoidal
+    solution of the held-drum system, by the Cayley map."""
+    c3 = 4.0e6 / 20
+    K = np.zeros((3, 3))
+    K[:2, :2] = hand_matrices()[0][:2, :2]
+    K[2, 2] = c3
+    M = np.diag([MA, MB, 2000.0])
+    h, n = 2e-3, 100
+    model = tmp_path / "two.yaml"
+    model.write_text(TWO_DRUMS)
+    path = tmp_path / "s.yaml"
+    path.write_text(f"cranefe: 1\nscene: t\nmodel: {model}\neffects: {{sway: false}}\n"
+                    f"analysis:\n  type: transient\n  duration: {h * n}\n  time_step: {h}\n"
+                    f"  method: modal\n  modes: 3\n"
+                    f"  drums:\n    aux: {{speed: 0}}\n    hoist: {{speed: 1.0}}\n")
+    res = simulate(load(path))
+    lab = res.labels
+    free = [lab.index(x) for x in ("node A z", "node B z", "node C z")]
+    q, v = trapezoidal(M, np.zeros((3, 3)), K, lambda s: np.array([C1 * R * s, 0, 0]), h, n)
+    close(res.q[:, free], q)
+    close(res.q[:, lab.index("drum hoist")], h * np.arange(n + 1))
+    assert np.abs(res.q[:, lab.index("drum aux")]).max() == 0
+    assert np.abs(q[:, 0]).max() > 1e-3
+
+
+def test_sparse_path_with_a_prescribed_drum_and_too_many_modes(tmp_path, monkeypatch):
+    """On the Lanczos path the modes are those of the sub-system (drum held), not of the
+    whole model; asking more modes than it has stops at n - 1 Lanczos pairs (eigsh's
+    limit: here the rigid motion and mode 1 of the 3-coordinate free-drum model) with
+    the warning, instead of looping for ever."""
+    import cranefe.analysis.transient.modal as tm
+    monkeypatch.setattr(tm, "DENSE_MAX", 1)
+    wd, tr, h, n = 2.0, 0.1, 2e-3, 100
+    w, V = held_drum_modes()
+    res = run(tmp_path, f"  duration: {h * n}\n  time_step: {h}\n  method: modal\n"
+                        f"  modes: 1\n  drums:\n    hoist: {{speed: {wd}, ramp: {tr}}}\n")
+    assert res.highest_frequency_hz == pytest.approx(w[0] / (2 * np.pi), rel=1e-7)
+    t = h * np.arange(n + 1)
+    theta = np.where(t < tr, wd * t**2 / (2 * tr), wd * (t - tr / 2))
+    p = V[:, 0]
+    eta, _ = trapezoidal(np.eye(1), np.zeros((1, 1)), np.diag([w[0] ** 2]),
+                         lambda s: np.array([p[0] * C1 * R * np.where(
+                             s < tr, wd * s**2 / (2 * tr), wd * (s - tr / 2))]), h, n)
+    X = np.outer(V[:, 1], V[:, 1]) / w[1] ** 2
+    q = np.outer(eta[:, 0], p) + np.outer(C1 * R * theta, X[:, 0])
+    close(res.q[:, :2], q, rel=1e-7)                   # Lanczos's tolerance
+    res = run(tmp_path, f"  duration: {h * 10}\n  time_step: {h}\n  method: modal\n"
+                        f"  modes: 5\n  drums:\n    hoist: {{torque: 20000}}\n", name="m5")
+    assert res.modes == 1
+    assert any("modes: 5 asked" in m for m in res.warnings)
+
+
+def test_automatic_step_of_a_slow_model(tmp_path):
+    """No time_step: a twentieth of the shortest retained period, pi / (10 w_1), for a
+    soft rope whose only retained mode is below 1 rad/s (w_1 = 0.68 rad/s here, by
+    eigh of the held-drum matrices with EA 100 times smaller)."""
+    text = model_text().replace(f"EA: {EA1}", f"EA: {EA1 / 100}").replace(
+        f"EA: {EA2}", f"EA: {EA2 / 100}")
+    model = tmp_path / "soft.yaml"
+    model.write_text(text)
+    K = (C1 * np.outer(A1, A1) + C2 * np.outer(A2, A2))[:2, :2] / 100
+    w1 = np.sqrt(sla.eigh(K, np.diag([MA, MB]), eigvals_only=True)[0])
+    assert w1 < 1.0
+    h = np.pi / (10 * w1)
+    path = tmp_path / "s.yaml"
+    path.write_text(f"cranefe: 1\nscene: t\nmodel: {model}\neffects: {{sway: false}}\n"
+                    f"analysis:\n  type: transient\n  duration: {100 * h}\n"
+                    f"  method: modal\n  modes: 1\n"
+                    f"  drums:\n    hoist: {{speed: 0.1, ramp: {10 * h}}}\n")
+    res = simulate(load(path))
+    assert res.time_step == pytest.approx(h, rel=1e-9)
+    assert res.highest_frequency_hz == pytest.approx(w1 / (2 * np.pi), rel=1e-9)
