@@ -26,14 +26,10 @@ peaks are interpolated (cubic Hermite), so a peak's error is O((w h)^4) = 1.3e-5
 w h = 0.06; 1e-4 below. Exact numbers (speeds, classes, lines) to 1e-12.
 """
 
-import functools
-
 import numpy as np
 import pytest
 
 import cranefe
-from cranefe.errors import AnalysisError, ModelError
-from cranefe.model import load
 
 G = 9.81
 M, FALLS, R, EA = 5000.0, 2, 0.25, 3.15e6
@@ -76,13 +72,11 @@ def write(tmp, extra="", name="scene.yaml"):
     return path
 
 
-@functools.lru_cache(maxsize=None)
-def table():
-    """The whole load table, computed once per session (mutmut's forked runs share it)."""
-    import tempfile
-    from pathlib import Path
-    tmp = Path(tempfile.mkdtemp(prefix="loads-kill-"))
-    return cranefe.loads(str(write(tmp)))
+@pytest.fixture(scope="module")
+def table(tmp_path_factory):
+    """The whole load table, computed once per test run (a fixture, not a cache shared
+    across processes: each mutant's run computes it with the mutated code)."""
+    return cranefe.loads(str(write(tmp_path_factory.mktemp("loads"))))
 
 
 def phi2(v):
@@ -94,8 +88,8 @@ def line(hc, v):
     return a + b * v
 
 
-def test_phi2_curve_drive_classes_and_the_class_it_behaves_like():
-    r = table()
+def test_phi2_curve_drive_classes_and_the_class_it_behaves_like(table):
+    r = table
     assert r.hook_per_drum == pytest.approx(R / FALLS, rel=1e-12)
     p2 = r.factors["phi2"]
     v = [0.125, 0.25, 0.375, 0.5]
@@ -139,8 +133,8 @@ def test_phi2_curve_drive_classes_and_the_class_it_behaves_like():
     assert d["HD5"]["simulation"] == "hoist start"
 
 
-def test_phi3_phi5_phi6_and_the_rigid_crane():
-    f = table().factors
+def test_phi3_phi5_phi6_and_the_rigid_crane(table):
+    f = table.factors
     p3 = f["phi3"]
     assert p3["value"] == pytest.approx(1 - 2 * 0.25, abs=TOL)
     assert p3["beta3_equivalent"] == pytest.approx(1.0, abs=TOL / 0.25)
@@ -172,8 +166,8 @@ def test_phi3_phi5_phi6_and_the_rigid_crane():
     assert f["phi7"]["standard"] == [1.25, 1.6]
 
 
-def test_simulations_say_what_was_run():
-    r = table()
+def test_simulations_say_what_was_run(table):
+    r = table
     names = [t.name for t in r.simulations]
     assert names == ["lift-off 0.5 m/s", "lift-off 0.375 m/s", "lift-off 0.25 m/s",
                      "lift-off 0.125 m/s", "hoist start", "release"]
