@@ -345,3 +345,68 @@ def test_phi1_of_the_masses_of_an_elastic_arm(tmp_path):
     assert p1["whole_crane"]["upper"] == pytest.approx(1 + whole.max() / G, abs=tol)
     assert p1["whole_crane"]["lower"] == pytest.approx(1 + whole.min() / G, abs=tol)
     assert p1["standard"] == 1.1
+
+
+CART = """cranefe: 1
+name: a cart on a slider, the load on a 10 m rope below it
+plane: xz
+nodes:
+  P:   [0.0, 0.0, 20.0]
+  D:   [-1.0, 0.0, 20.5]
+  L:   [0.0, 0.0, 10.0]
+ground: []
+masses:
+  L: 2000
+bodies:
+  cart: {mass: 3000, com: [0.0, 0.0, 20.0], inertia: 1.0e3, nodes: [P, D]}
+joints:
+  - {name: travel, type: slider, bodies: [ground, cart], at: P, axis: [1, 0, 0],
+     range: [-1.0, 16.0]}
+drums:
+  hoist: {node: D, radius: 0.2, inertia: 5.0, brake: false, rope_reserve: 20.0}
+ropes:
+  hoist_rope: {EA: 5.0e7, path: [hoist, P, L]}
+"""
+
+
+@pytest.mark.parametrize("jerk", [1.0, 0.0])
+def test_phi5_of_a_slider_move(tmp_path, jerk):
+    """The cart travels 6 m on its slider, reaching 0.5 m/s over a ramp of t_j plus one
+    pendulum period 2 pi / w (w = sqrt(g / l), l = 10 m): the acceleration a = v / (ramp
+    - t_j) rises over t_j and the load's swing ends with the ramp, so the braking repeats
+    the start. The horizontal force on the load over m a is the single-mass
+    1 + |sin(w t_j / 2)| / (w t_j / 2) (t_j = 0: 2), in the linear limit. Tolerance
+    1e-3: the exact pendulum at 0.5 deg of swing, the engine's tolerance 1e-9, second
+    differences of the stored positions at 0.01 s (measured 1e-4)."""
+    (tmp_path / "cart.yaml").write_text(CART)
+    w = np.sqrt(G / 10.0)
+    ramp = float(jerk + 2 * np.pi / w)
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: t\nmodel: cart.yaml\nanalysis:\n  type: loads\n"
+                    "  hoist: {speed: 0.2}\n  tolerance: 1.0e-9\n  drives:\n"
+                    f"    travel: {{v_max: 0.5, ramp: {ramp}, jerk_time: {jerk}, "
+                    "distance: 6.0}\n")
+    r = cranefe.loads(str(path), only=["travel"])
+    assert set(r.factors) == {"phi5"} and set(r.factors["phi5"]) == {"travel"}
+    p = r.factors["phi5"]["travel"]
+    a = 0.5 / (ramp - jerk)
+    x = w * jerk / 2
+    exact = 1 + abs(np.sin(x)) / x if jerk else 2.0
+    assert p["value"] == pytest.approx(exact, rel=1e-3)
+    assert p["kind"] == "slider" and p["acceleration"] == pytest.approx(a, rel=1e-12)
+    assert p["rigid_body_force_N"] == pytest.approx(2000 * a, rel=1e-12)
+    assert p["peak_force_N"] == pytest.approx(exact * 2000 * a, rel=1e-3)
+    assert p["standard"] == ([1.0, 1.5] if jerk else [1.5, 2.0])
+    assert p["ramp_s"] == pytest.approx(ramp) and p["jerk_time_s"] == jerk
+    assert p["simulation"] == "travel move"
+    tr = r.simulations[0]
+    assert tr.name == "travel move" and tr.engine == "operation"
+    prof = tr.parameters["profile"]
+    assert prof["type"] == ("s_curve" if jerk else "trapezoid")
+    assert prof["a_max"] == pytest.approx(a) and prof["distance"] == 6.0
+    if jerk:
+        assert prof["j_max"] == pytest.approx(a / jerk)
+    # the move (6 m at 0.5 m/s plus a ramp) and then three quarters of the period of a
+    # pendulum as long as the highest node (the drum, 20.5 m) is above the load (10 m)
+    assert tr.duration == pytest.approx(6.0 / 0.5 + ramp + 0.75 * 2 * np.pi *
+                                        np.sqrt(10.5 / G), rel=1e-12)
