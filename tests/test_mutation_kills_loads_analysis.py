@@ -64,11 +64,15 @@ analysis:
 {extra}"""
 
 
-def write(tmp, extra="", name="scene.yaml"):
+def write(tmp, extra="", name="scene.yaml", hoist=None):
     tmp.mkdir(parents=True, exist_ok=True)
     (tmp / "model.yaml").write_text(MODEL)
     path = tmp / name
-    path.write_text(SCENE.format(model=tmp / "model.yaml", extra=extra))
+    text = SCENE.format(model=tmp / "model.yaml", extra=extra)
+    if hoist:
+        text = "\n".join(hoist if ln.startswith("  hoist:") else ln
+                         for ln in text.split("\n"))
+    path.write_text(text)
     return path
 
 
@@ -194,6 +198,62 @@ def test_the_whole_load_table(tmp_path):
     check_phi2(r)
     check_phi3_phi5_phi6_and_the_rigid_crane(r)
     check_simulations(r)
+    check_document_keys(r)
+
+
+KEYS = {
+    "phi2": {"value", "drive_class", "v_h_m_s", "standard", "hoisting_class",
+             "hoisting_class_source", "behaves_like", "rope", "peak_time_s", "lift_off_s",
+             "simulation", "drive_classes", "curve", "clause", "assumes"},
+    "phi1": {"value", "lower", "standard", "standard_range", "by_mass", "clause",
+             "simulation", "assumes"},
+    "phi3": {"value", "dm_over_m", "release_time_s", "rope", "peak_time_s", "standard",
+             "standard_slow", "beta3_equivalent", "simulation", "clause", "assumes"},
+    "phi4": {"value", "standard", "clause", "missing"},
+    "phi5": {"value", "standard", "standard_text", "rope", "acceleration_m_s2", "ramp_s",
+             "jerk_time_s", "rigid_body_force_N", "peak_force_N", "braking", "peak_time_s",
+             "simulation", "clause", "assumes"},
+    "phi6": {"value", "standard", "static_test", "from", "clause", "assumes"},
+    "phi7": {"value", "standard", "clause", "missing"},
+}
+
+
+def check_document_keys(r):
+    """The keys of each factor, as docs/loads.md's Output lists them (the --json
+    document's contract), with their clause and explanations present."""
+    f = r.factors
+    for name, keys in KEYS.items():
+        got = f[name]["hoist"] if name == "phi5" else f[name]
+        assert set(got) == keys, name
+        assert got["clause"].startswith("EN 13001-2"), name
+    assert set(f["phi5"]["hoist"]["braking"]) == {"value", "lowest_force_N", "slack"}
+    assert f["phi3"]["release_time_s"] == 0.0 and f["phi3"]["simulation"] == "release"
+    assert f["phi5"]["hoist"]["simulation"] == "hoist start"
+    assert f["phi5"]["hoist"]["rope"] == "hoist_rope"
+    assert "sudden" in f["phi5"]["hoist"]["standard_text"]
+    assert "buffer" in f["phi7"]["missing"] and "step or gap" in f["phi4"]["missing"]
+    assert f["phi4"]["standard"] is None
+
+
+def test_a_hard_start_would_slacken_the_rope_when_braking(tmp_path):
+    """only = [the hoist drum]: the start alone. 2 m/s reached in 0.1 s (a = 20 m/s^2, a
+    step of acceleration lasting T = 0.1 s < pi / w): the relative motion swings after
+    the pulse with amplitude (a / w^2) 2 sin(w T / 2), so phi5 = 2 sin(0.3) = 0.591;
+    braking over the same ramp mirrors it: S0 (1 - phi5 a / g) < 0, the rope would go
+    slack. Tolerance 1e-3: the trapezoidal rule's frequency error (w h)^2 / 12 = 3e-4
+    moves 2 sin(w T / 2) by (w T / 2) cot(w T / 2) times that (measured 2.9e-4)."""
+    r = cranefe.loads(str(write(tmp_path, hoist="  hoist: {drum: hoist, load: H, speed: "
+                                "2.0, creep: 0.2, ramp: 0.1, jerk_time: 0}")),
+                      only=["hoist"])
+    assert set(r.factors) == {"phi5"}
+    p = r.factors["phi5"]["hoist"]
+    a = 2.0 / 0.1
+    exact = 2 * np.sin(W * 0.1 / 2)
+    assert p["value"] == pytest.approx(exact, rel=1e-3)
+    assert p["braking"]["lowest_force_N"] == pytest.approx(S0 * (1 - exact * a / G),
+                                                            rel=1e-2)
+    assert p["braking"]["slack"] is True
+    assert [t.name for t in r.simulations] == ["hoist start"]
 
 
 def test_only_phi6_runs_the_declared_drive_class_alone(tmp_path):
