@@ -30,6 +30,7 @@ import numpy as np
 import pytest
 
 import cranefe
+from cranefe.analysis.loads import standard
 
 G = 9.81
 M, FALLS, R, EA = 5000.0, 2, 0.25, 3.15e6
@@ -127,6 +128,8 @@ def check_phi2(r):
         assert d[hd]["value"] == pytest.approx(exact, rel=TOL), hd
         for hc in LINES:
             assert d[hd]["standard"][hc] == pytest.approx(line(hc, vh), rel=1e-12)
+        assert hd in standard.DRIVE_CLASS_TEXT and d[hd]["text"] == \
+            standard.DRIVE_CLASS_TEXT[hd] and d[hd]["text"]
     assert d["HD5"]["simulation"] == "hoist start"
 
 
@@ -233,6 +236,7 @@ def check_document_keys(r):
     assert "sudden" in f["phi5"]["hoist"]["standard_text"]
     assert "buffer" in f["phi7"]["missing"] and "step or gap" in f["phi4"]["missing"]
     assert f["phi4"]["standard"] is None
+    assert f["phi6"]["static_test"] == 1.0
 
 
 def test_a_hard_start_would_slacken_the_rope_when_braking(tmp_path):
@@ -274,15 +278,27 @@ def test_only_phi6_runs_the_declared_drive_class_alone(tmp_path):
 
 def test_only_phi2_of_hd5_is_the_hoist_start(tmp_path):
     """Drive class HD5 lifts off at v = 0 and accelerates: only the start is run, and
-    the curve is that one point."""
-    r = cranefe.loads(str(write(tmp_path, "  drive_class: HD5\n")), only=["phi2"])
+    the curve is that one point. 1 m/s reached in 0.8 s (a = 1.25 m/s^2, the ramp longer
+    than half a period pi / w = 0.52 s): phi2 = 1 + 2 a / g = 1.255, above every class
+    line at v = 0 (HC4: 1.20), so the class is HC4 by default."""
+    r = cranefe.loads(str(write(tmp_path, "  drive_class: HD5\n",
+                                hoist="  hoist: {drum: hoist, load: H, speed: 1.0, "
+                                "creep: 0.125, ramp: 0.8, jerk_time: 0}")), only=["phi2"])
     p2 = r.factors["phi2"]
     # the start also gives phi5 of the hoist, reported with it
     assert set(r.factors) == {"phi2", "phi5"}
     assert r.factors["phi5"]["hoist"]["value"] == pytest.approx(2.0, rel=TOL)
-    assert p2["value"] == pytest.approx(1 + 2 * 0.5 / G, rel=TOL)
+    a = 1.0 / 0.8
+    assert p2["value"] == pytest.approx(1 + 2 * a / G, rel=TOL)
     assert p2["v_h_m_s"] == 0.0 and p2["simulation"] == "hoist start"
-    assert p2["standard"] == pytest.approx(LINES[p2["hoisting_class"]][0], rel=1e-12)
+    assert p2["curve"] == []
+    cls = p2["behaves_like"]
+    assert cls["within"] is None and cls["closest"] == "HC4"
+    for hc, (phi_min, _) in LINES.items():
+        assert cls["excess"][hc] == pytest.approx(1 + 2 * a / G - phi_min, abs=TOL)
+    assert p2["hoisting_class"] == "HC4"
+    assert p2["hoisting_class_source"] == "HC4: the crane exceeds every class somewhere"
+    assert p2["standard"] == pytest.approx(1.20, rel=1e-12)
     assert [t.name for t in r.simulations] == ["hoist start"]
 
 
