@@ -386,7 +386,7 @@ def arm_reference(duration):
             state = np.array([y[0], 0.0, y[2], 0.0])    # landing: the load stops
         on_ground = not on_ground
     rdd = np.array(rdd)
-    return lifts, -5.0 * rdd, -10.0 * rdd               # rotation +r moves x > 0 down
+    return lifts, np.array(ts), -5.0 * rdd, -10.0 * rdd     # rotation +r: x > 0 down
 
 
 def test_phi1_of_the_masses_of_an_elastic_arm(tmp_path):
@@ -405,7 +405,7 @@ def test_phi1_of_the_masses_of_an_elastic_arm(tmp_path):
     r = cranefe.loads(str(path), only=["phi1"])
     p1 = r.factors["phi1"]
     duration = r.simulations[0].duration
-    lifts, arm, tip = arm_reference(duration)
+    lifts, ts, arm, tip = arm_reference(duration)
     # lift-off, landing once as the arm swings back, lift-off for good
     assert len(lifts) == 2
     assert r.simulations[0].parameters["drum_speed_rad_s"] == pytest.approx(2.0)
@@ -419,6 +419,8 @@ def test_phi1_of_the_masses_of_an_elastic_arm(tmp_path):
     assert p1["mass"] == "T"
     assert p1["value"] == by["T"]["upper"] and p1["lower"] == by["T"]["lower"]
     assert p1["peak_time_s"] == by["T"]["time_upper_s"] > lifts[0]
+    # the upward peak (the oscillation is nearly symmetric: its time tells up from down)
+    assert p1["peak_time_s"] == pytest.approx(ts[np.argmax(tip)], abs=0.01)
     whole = (1000 * arm + 500 * tip) / 1500
     tol = 0.01 * np.abs(whole).max() / G
     assert p1["whole_crane"]["upper"] == pytest.approx(1 + whole.max() / G, abs=tol)
