@@ -65,14 +65,14 @@ analysis:
 {extra}"""
 
 
-def write(tmp, extra="", name="scene.yaml", hoist=None):
+def write(tmp, extra="", name="scene.yaml", hoist=None, release=None):
     tmp.mkdir(parents=True, exist_ok=True)
     (tmp / "model.yaml").write_text(MODEL)
     path = tmp / name
     text = SCENE.format(model=tmp / "model.yaml", extra=extra)
-    if hoist:
-        text = "\n".join(hoist if ln.startswith("  hoist:") else ln
-                         for ln in text.split("\n"))
+    for key, new in (("  hoist:", hoist), ("  release:", release)):
+        if new:
+            text = "\n".join(new if ln.startswith(key) else ln for ln in text.split("\n"))
     path.write_text(text)
     return path
 
@@ -491,3 +491,17 @@ def test_phi5_of_a_slider_move(tmp_path, jerk):
     # pendulum as long as the highest node (the drum, 20.5 m) is above the load (10 m)
     assert tr.duration == pytest.approx(6.0 / 0.5 + ramp + 0.75 * 2 * np.pi *
                                         np.sqrt(10.5 / G), rel=1e-12)
+
+
+def test_a_release_that_would_slacken_the_rope(tmp_path):
+    """only = [phi3]: three quarters of the load dropped at once: 1 - 2 x 0.75 = -0.5,
+    a negative factor (the rope would go slack), said in `slack`; beta3 = 1."""
+    r = cranefe.loads(str(write(tmp_path, release="  release: {fraction: 0.75, time: 0}")),
+                      only=["phi3"])
+    p3 = r.factors["phi3"]
+    assert set(r.factors) == {"phi3"}
+    assert p3["value"] == pytest.approx(1 - 2 * 0.75, abs=TOL)
+    assert p3["beta3_equivalent"] == pytest.approx(1.0, abs=TOL / 0.75)
+    assert set(p3) == KEYS["phi3"] | {"slack"}
+    assert p3["slack"].startswith("the rope would go slack")
+    assert [t.name for t in r.simulations] == ["release"]
