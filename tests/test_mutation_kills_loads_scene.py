@@ -162,6 +162,11 @@ def test_speed_from_a_transient_scene(tmp_path):
     _, m = scene(tmp_path, "analysis:\n  type: transient\n  drums:\n"
                  "    hoist: {torque: 1000}\n", name="q.yaml")
     assert parse(m).speed == 0.5
+    # a slow drum (0.8 rad/s) is a speed; a ramp of 0 is no ramp (the default 1 s)
+    _, m = scene(tmp_path, "analysis:\n  type: transient\n  drums:\n"
+                 "    hoist: {speed: 0.8, ramp: 0}\n", name="slow.yaml")
+    s = parse(m)
+    assert s.speed == -0.8 and s.ramp == 1.0
 
 
 def test_the_lowest_mass_is_the_load(tmp_path):
@@ -170,6 +175,10 @@ def test_the_lowest_mass_is_the_load(tmp_path):
         "masses: {H: 5000.0}", "masses: {H: 5000.0, B: 1000.0, S: 10.0}") + \
         "  lower: {EA: 1.0e7, path: [H, B]}\n"
     _, m = scene(tmp_path, "analysis:\n  type: loads\n", model=text)
+    assert parse(m).loads == ("B",)
+    # the rope listed from the bottom up
+    _, m = scene(tmp_path, "analysis:\n  type: loads\n",
+                 model=text.replace("path: [H, B]", "path: [B, H]"), name="up.yaml")
     assert parse(m).loads == ("B",)
 
 
@@ -187,6 +196,9 @@ def test_default_joint_moves(tmp_path):
     mv = parse(m).moves[0]
     assert (mv.v_max, mv.ramp, mv.distance, mv.jerk) == pytest.approx(
         (np.radians(2.0), 3.0, np.radians(-10.0), 0.5))
+    _, m = scene(tmp_path, "analysis:\n  type: loads\n  drives:\n    luffing: "
+                 "{ramp: 3.0, jerk_time: 1.5}\n", model=HINGE, name="half.yaml")
+    assert parse(m).moves[0].jerk == 1.5
 
 
 def test_default_slider_move():
@@ -217,10 +229,57 @@ def test_default_slider_move():
     ("  hoist: {sped: 1}\n", "analysis.hoist.sped", ["speed"]),
     ("  release: {fractio: 0.2}\n", "analysis.release.fractio", ["fraction"]),
     ("  drives: {trolley: {}}\n", "analysis.drives.trolley",
-     ["no slider or hinge joint named 'trolley'"]),
+     ["no slider or hinge joint named 'trolley'; named ones: none"]),
+    ("  drives: [trolley]\n", "analysis.drives", ["mapping"]),
+    ("  hoist: {load: HX}\n", "analysis.hoist.load", ["unknown node 'HX'"]),
+    ("  hoist: {speed: -0.5}\n", "analysis.hoist.speed", []),
+    ("  hoist: {ramp: 0}\n", "analysis.hoist.ramp", []),
+    ("  hoist: {speed: fast}\n", "analysis.hoist.speed", []),
+    ("  hoist: {ramp: slow}\n", "analysis.hoist.ramp", []),
 ])
 def test_errors_name_the_file_and_entry(tmp_path, analysis, entry, words):
     error(tmp_path, "analysis:\n  type: loads\n" + analysis, entry, *words)
+
+
+@pytest.mark.parametrize("drive, entry", [
+    ("{v_max_deg: -1}", "analysis.drives.luffing.v_max_deg"),
+    ("{v_max_deg: x}", "analysis.drives.luffing.v_max_deg"),
+    ("{distance_deg: x}", "analysis.drives.luffing.distance_deg"),
+    ("{ramp: -2}", "analysis.drives.luffing.ramp"),
+    ("{ramp: x}", "analysis.drives.luffing.ramp"),
+    ("{jerk_time: -0.5}", "analysis.drives.luffing.jerk_time"),
+    ("{jerk_time: x}", "analysis.drives.luffing.jerk_time"),
+])
+def test_bad_hinge_moves_name_the_entry(tmp_path, drive, entry):
+    error(tmp_path, f"analysis:\n  type: loads\n  drives:\n    luffing: {drive}\n", entry,
+          model=HINGE)
+
+
+@pytest.mark.parametrize("drive, entry", [
+    ("{v_max: -1}", "analysis.drives.trolley_travel.v_max"),
+    ("{v_max: x}", "analysis.drives.trolley_travel.v_max"),
+    ("{distance: x}", "analysis.drives.trolley_travel.distance"),
+])
+def test_bad_slider_moves_name_the_entry(tmp_path, drive, entry):
+    crane = os.path.abspath(os.path.join(MODELS, "operations", "overhead_crane.yaml"))
+    path = tmp_path / "s.yaml"
+    path.write_text(f"cranefe: 1\nscene: t\nmodel: {crane}\nanalysis:\n  type: loads\n"
+                    f"  drives:\n    trolley_travel: {drive}\n")
+    with pytest.raises(ModelError) as e:
+        parse(load(path))
+    assert e.value.entry == entry and os.path.samefile(e.value.file, path)
+
+
+def test_given_slider_move(tmp_path):
+    """A slider's given keys replace the defaults (its *_deg keys are a hinge's and are
+    ignored); a jerk time of exactly half the ramp is allowed."""
+    crane = os.path.abspath(os.path.join(MODELS, "operations", "overhead_crane.yaml"))
+    path = tmp_path / "s.yaml"
+    path.write_text(f"cranefe: 1\nscene: t\nmodel: {crane}\nanalysis:\n  type: loads\n"
+                    "  drives:\n    trolley_travel: {v_max: 0.3, ramp: 3.0, distance: -4.0, "
+                    "jerk_time: 1.5, v_max_deg: 9}\n")
+    mv = parse(load(path)).moves
+    assert mv == (JointMove("trolley_travel", "slider", 0.3, 3.0, -4.0, 1.5),)
 
 
 def test_more_errors_name_the_file_and_entry(tmp_path):
