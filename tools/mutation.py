@@ -182,6 +182,45 @@ PRESETS = {
     "damping_exact_broad": ("cranefe/analysis/damping/exact.py",
                             ["tests/test_values.py", "tests/test_damping.py",
                              "tests/test_mutation_kills_exact.py"]),
+    # operation/constraints.py: the inextensible ropes' stepper and the massless blocks'
+    # helpers; hand states (pendulum, V, sling, trolley, two drums, block) and a 2 s
+    # pendulum run in the kill tests, plus the fast inextensible runs (< 1 s each)
+    "constraints": ("cranefe/analysis/operation/constraints.py",
+                    ["tests/test_mutation_kills_constraints.py",
+                     "tests/test_operation_inextensible.py::test_load_thrown_up_goes_slack_and_is_jerked_taut",
+                     "tests/test_operation_inextensible.py::test_torque_drum_hoists_with_the_drums_inertia",
+                     "tests/test_operation_inextensible.py::test_hoisting_at_constant_speed_without_sway_is_m_g",
+                     "tests/test_operation_inextensible.py::test_what_constraints_do_not_cover_is_refused"]),
+    # operation/flexible.py: the elastic structure riding on the mechanism; one-element
+    # members written out by hand in the kill tests, plus the fast tests of
+    # tests/test_operation_flexible.py (its runs take minutes: left out)
+    "flexible": ("cranefe/analysis/operation/flexible.py",
+                 ["tests/test_mutation_kills_flexible.py",
+                  "tests/test_operation_flexible.py::test_spinning_cantilever_stiffens_southwell",
+                  "tests/test_operation_flexible.py::test_linearisation_equals_the_linear_core",
+                  "tests/test_operation_flexible.py::test_truss_and_spring_structure_equals_the_linear_core",
+                  "tests/test_operation_flexible.py::test_static_tip_deflection_under_gravity",
+                  "tests/test_operation_flexible.py::test_refused_cases_exit_2",
+                  "tests/test_operation_flexible.py::test_lean_does_not_claim_an_elastic_structure"]),
+    # transient/modal.py: modal superposition with the static correction, against the
+    # trapezoidal rule of the modal equations written out by hand (1-3 s)
+    "transient_modal": ("cranefe/analysis/transient/modal.py",
+                        ["tests/test_mutation_kills_transient_modal.py"]),
+    # loads/analysis.py: the EN 13001-2 load table of a single mass on an elastic rope
+    # by hand (phi1 on an elastic arm, phi5 of a slider move); the hinge move's test
+    # (test_loads.py, ~10 s) reaches suspension_node and the hinge branch
+    "loads_analysis": ("cranefe/analysis/loads/analysis.py",
+                       ["tests/test_mutation_kills_loads_analysis.py",
+                        "tests/test_loads.py::test_phi5_of_a_luffing_hinge"]),
+    # loads/scene.py: the loads scene's keys, defaults and errors (parse only, ~7 s)
+    "loads_scene": ("cranefe/analysis/loads/scene.py",
+                    ["tests/test_mutation_kills_loads_scene.py"]),
+    # loads/runs.py: the scenes behind the factors; the pure parts (working point,
+    # reeving ratio, s-curve table, default step, lift-off guesses) by hand in the
+    # scene kill tests, the runs through the load table
+    "loads_runs": ("cranefe/analysis/loads/runs.py",
+                   ["tests/test_mutation_kills_loads_scene.py",
+                    "tests/test_mutation_kills_loads_analysis.py"]),
 }
 
 
