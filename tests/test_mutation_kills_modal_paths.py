@@ -435,3 +435,118 @@ springs:
     assert b.factor == pytest.approx(1.5, rel=RTOL)
     assert b.labels == ("body a ry", "body b ry")
     np.testing.assert_allclose(np.abs(b.mode), [0.0, 1.0], atol=1e-12)
+
+
+# ---------------------------------------------------------------- second round
+
+
+def test_result_document_and_node_shapes_of_a_chain():
+    ks, ms = (3.0e4,) * 4, (10.0,) * 4
+    model = chain(ks, ms)
+    r = modes(model, count=2)
+    assert r.solver == "dense"                 # auto: small -> dense even with a count
+    doc = r.to_dict()
+    assert doc["model"] == "chain" and doc["effects"]["sway"] is False
+    assert doc["modes"][0]["frequency_hz"] == pytest.approx(r.omega[0] / (2 * math.pi),
+                                                          rel=1e-15)
+    assert {"solve", "total"} <= set(doc["timings_s"]) and doc["warnings"] == []
+    # node shapes: node N_i moves along x by the i-th coordinate, nothing along y, z
+    i = [model.node_names.index(f"N{j}") for j in range(4)]
+    np.testing.assert_allclose(r.node_shapes[:, i, 0], r.shapes.T, rtol=1e-15)
+    assert np.all(r.node_shapes[:, :, 1:] == 0)
+    assert np.all(r.node_shapes[:, model.node_names.index("G")] == 0)
+
+
+def test_slack_rope_is_warned():
+    # gravity off: the rope hangs with no tension (S = 0 exactly): a warning names it
+    text = """cranefe: 1
+plane: xz
+gravity: [0, 0, 0]
+nodes: {S: [0, 0, 30], B: [0, 0, 18]}
+ground: [S]
+masses: {B: 2000}
+ropes:
+  r: {EA: 1.0e7, path: [S, B]}
+"""
+    r = modes(load("slack.yaml", text))
+    assert any(w.startswith("rope r has no tension") for w in r.warnings)
+    assert r.omega[-1] == pytest.approx(math.sqrt(1.0e7 / 12.0 / 2000), rel=RTOL)
+
+
+def test_sparse_rigid_drum_labelled_by_its_largest_component():
+    # the free drum's turning (drum 1 rad, hook R / n = 0.125 m): rigid, named by the drum
+    r = modes(hoist(False), solver="sparse", count=1)
+    assert r.solver == "sparse"
+    assert r.rigid.tolist() == [True] and r.omega.tolist() == [0.0]
+    assert r.quasi_cyclic == ("drum hoist",)
+
+
+def test_unstable_hidden_below_the_relative_check_is_caught():
+    # bar a: k = m g l - 1 (w^2 = -1 / I_O, tiny beside bar b's k = 1e12 / I_O, below
+    # 1e-9 of it): the element terms k and -m g l do not cancel to round-off -> raise
+    m, l, Ic = 800.0, 3.0, 900.0
+    mgl = m * G * l
+    text = f"""cranefe: 1
+plane: xz
+nodes: {{O: [0, 0, 0], E: [0, 0, 6], P: [10, 0, 0], F: [10, 0, 6]}}
+bodies:
+  a: {{mass: {m}, com: [0, 0, {l}], inertia: {Ic}, nodes: [O, E]}}
+  b: {{mass: {m}, com: [10, 0, {l}], inertia: {Ic}, nodes: [P, F]}}
+joints:
+  - {{type: hinge, bodies: [ground, a], at: O}}
+  - {{type: hinge, bodies: [ground, b], at: P}}
+springs:
+  - {{name: s1, type: rotational, bodies: [ground, a], at: O, stiffness: {mgl - 1!r}}}
+  - {{name: s2, type: rotational, bodies: [ground, b], at: P, stiffness: 1.0e12}}
+"""
+    with pytest.raises(AnalysisError, match="not a stable equilibrium"):
+        modes(load("hidden.yaml", text))
+    with pytest.raises(AnalysisError, match="not a stable equilibrium"):
+        modes(load("hidden.yaml", text), solver="sparse", count=1)
+
+
+@lru_cache(maxsize=None)
+def _linked_bars_reference(K):
+    with mp.workdps(50):
+        w2 = mp.eigsy(mp.matrix([[mp.mpf(x) for x in row] for row in K]),
+                      eigvals_only=True)
+        return tuple(sorted(float(x) for x in w2))
+
+
+def test_graded_fallback_to_the_cholesky_factor_with_two_coordinates():
+    # bars a and b above their hinges, tops (z = 6) joined by a horizontal spring kc:
+    # stretch 6 (th_b - th_a). a's negative row meets every row within two rings, so
+    # it is not merged: the Cholesky factor of K1 and the Jacobi SVD. By hand
+    # K = [[ka + 36 kc - mgl, -36 kc], [-36 kc, kb + 36 kc - mgl]], M = I_O I.
+    m, l, Ic = 800.0, 3.0, 900.0
+    mgl, IO = m * G * l, Ic + m * l * l
+    ka, kb, kc = 3.0e12, 1.0e5, 700.0
+    text = f"""cranefe: 1
+plane: xz
+nodes: {{O: [0, 0, 0], E: [0, 0, 6], P: [10, 0, 0], F: [10, 0, 6]}}
+bodies:
+  a: {{mass: {m}, com: [0, 0, {l}], inertia: {Ic}, nodes: [O, E]}}
+  b: {{mass: {m}, com: [10, 0, {l}], inertia: {Ic}, nodes: [P, F]}}
+joints:
+  - {{type: hinge, bodies: [ground, a], at: O}}
+  - {{type: hinge, bodies: [ground, b], at: P}}
+springs:
+  - {{name: sa, type: rotational, bodies: [ground, a], at: O, stiffness: {ka!r}}}
+  - {{name: sb, type: rotational, bodies: [ground, b], at: P, stiffness: {kb!r}}}
+  - {{name: c, type: axial, nodes: [E, F], stiffness: {kc!r}}}
+"""
+    model = load("linked.yaml", text)
+    r = modes(model)
+    assert "assembled K factorised" in r.graded
+    with mp.workdps(50):
+        K = ((mp.mpf(ka) + 36 * mp.mpf(kc) - mp.mpf(mgl), -36 * mp.mpf(kc)),
+             (-36 * mp.mpf(kc), mp.mpf(kb) + 36 * mp.mpf(kc) - mp.mpf(mgl)))
+        K = tuple(tuple(x / mp.mpf(IO) for x in row) for row in K)
+    w2 = _linked_bars_reference(K)
+    assert r.omega == pytest.approx(np.sqrt(w2), rel=1e-10)
+    s = assemble(model)
+    Ka, Ma = s.K.toarray(), s.M.toarray()
+    np.testing.assert_allclose(r.shapes.T @ Ma @ r.shapes, np.eye(2), atol=1e-12)
+    Kd = r.shapes.T @ Ka @ r.shapes
+    np.testing.assert_allclose(np.diag(Kd), r.omega**2, rtol=1e-8)
+    assert abs(Kd[0, 1]) < 1e-8 * r.omega[1] ** 2
