@@ -550,3 +550,30 @@ springs:
     Kd = r.shapes.T @ Ka @ r.shapes
     np.testing.assert_allclose(np.diag(Kd), r.omega**2, rtol=1e-8)
     assert abs(Kd[0, 1]) < 1e-8 * r.omega[1] ** 2
+
+
+def test_drive_reduction_with_sway_dense_and_sparse():
+    # sway on: the pendulum sqrt(g / L), L = 20 m from the sheave, does not see the
+    # drive (error 0); the vertical mode has the closed-form error above. On the sparse
+    # path the coupled model's drum adds a rigid mode first: the comparison must still
+    # pair the elastic ones (it paired none before this test; modal.py fixed).
+    n, R, J, m = 2, 0.25, 500.0, 5000.0
+    model = hoist(False, J=J, rotor=0.0, falls=n, sway=True)
+    wp = math.sqrt(G / 20.0)
+    reduced = modes(model, replace(model.effects, drive="reduced"))
+    doc = drive_reduction(model, reduced)
+    assert [md["index"] for md in doc["modes"]] == [1, 2]
+    assert doc["modes"][0]["relative_error"] == pytest.approx(0.0, abs=1e-12)
+    assert doc["modes"][0]["frequency_hz_coupled"] == pytest.approx(wp / (2 * math.pi),
+                                                                   rel=RTOL)
+    r = R / n
+    assert (1 + doc["modes"][1]["relative_error"]) ** 2 == pytest.approx(
+        1 - m * r * r / (m * r * r + J), rel=RTOL)
+    sparse = modes(model, replace(model.effects, drive="reduced"), solver="sparse", count=1)
+    assert sparse.solver == "sparse"
+    doc = drive_reduction(model, sparse)
+    assert [md["index"] for md in doc["modes"]] == [1]
+    assert doc["modes"][0]["relative_error"] == pytest.approx(0.0, abs=1e-9)
+    assert doc["modes"][0]["frequency_hz_coupled"] == pytest.approx(wp / (2 * math.pi),
+                                                                   rel=SPARSE)
+    assert doc["coupled_quasi_cyclic"] == ["drum hoist"]
