@@ -577,3 +577,19 @@ def test_drive_reduction_with_sway_dense_and_sparse():
     assert doc["modes"][0]["frequency_hz_coupled"] == pytest.approx(wp / (2 * math.pi),
                                                                    rel=SPARSE)
     assert doc["coupled_quasi_cyclic"] == ["drum hoist"]
+
+
+def test_gravity_buckling_of_a_level_bar_is_never():
+    # centre of mass level with the hinge: gravity adds no stiffness (nu = 0 exactly)
+    text = """cranefe: 1
+plane: xz
+nodes: {O: [0, 0, 0], E: [6, 0, 0]}
+bodies:
+  bar: {mass: 800, com: [3, 0, 0], inertia: 900, nodes: [O, E]}
+joints:
+  - {type: hinge, bodies: [ground, bar], at: O}
+springs:
+  - {name: s, type: rotational, bodies: [ground, bar], at: O, stiffness: 2.0e5}
+"""
+    b = gravity_buckling(load("level.yaml", text))
+    assert b.factor == math.inf and b.mode.tolist() == [0.0]
