@@ -294,8 +294,13 @@ def drive_reduction(model, reduced):
     m / (m r^2 + J) is not dimensionless).
     """
     from dataclasses import replace
-    coupled = modes(model, replace(model.effects, drive="coupled"),
-                    count=None if reduced.solver == "dense" else len(reduced.omega),
+    effects = replace(model.effects, drive="coupled")
+    system = assemble(model, effects)
+    # sparse: the coupled model's extra coordinates (the drums) may each add a rigid
+    # (quasi-cyclic) mode first, so ask for that many more to pair every elastic one
+    extra = system.K.shape[0] - reduced.dofs
+    coupled = modes(model, effects, system=system,
+                    count=None if reduced.solver == "dense" else len(reduced.omega) + extra,
                     solver=reduced.solver)
     wr = reduced.omega[~reduced.rigid]
     wc = coupled.omega[~coupled.rigid][:len(wr)]
