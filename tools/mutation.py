@@ -221,6 +221,22 @@ PRESETS = {
     "loads_runs": ("cranefe/analysis/loads/runs.py",
                    ["tests/test_mutation_kills_loads_scene.py",
                     "tests/test_mutation_kills_loads_analysis.py"]),
+    # analysis/modal.py: dense, sparse (massless node condensed in the operator), rigid
+    # and unstable modes, graded paths and the Cholesky fallback, drive_reduction (~10 s)
+    "modal": ("cranefe/analysis/modal.py",
+              ["tests/test_mutation_kills_modal_paths.py",
+               "tests/test_graded.py::test_negative_load_stiffness_merged_locally",
+               "tests/test_mutation_kills_condense_massless_map.py"]),
+    # analysis/graded.py: element factor, energy, merged negative parts, massless rows,
+    # Jacobi SVD; graded models against mpmath (~15 s with test_graded.py)
+    "graded": ("cranefe/analysis/graded.py",
+               ["tests/test_mutation_kills_modal_paths.py", "tests/test_graded.py",
+                "tests/test_mutation_kills_condense_massless_map.py"]),
+    # analysis/buckling.py: critical gravity factor k/(m g l) of bars above hinges,
+    # never-buckling cases, the Greenhill column (~12 s)
+    "buckling": ("cranefe/analysis/buckling.py",
+                 ["tests/test_mutation_kills_modal_paths.py",
+                  "tests/test_structures.py::test_column_buckles_under_its_own_weight_at_greenhill"]),
 }
 
 
