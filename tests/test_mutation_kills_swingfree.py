@@ -257,13 +257,14 @@ def test_swing_free_energy_optimal_move(length, g):
     assert np.allclose(r["position"](ts[1:3]), s[1:3], rtol=0, atol=1e-9 * D)
 
 
-@pytest.mark.parametrize("w, T", [(9.9, 20.0), (1.5, 8.0), (0.01, 5.0), (0.3, 0.2)])
+@pytest.mark.parametrize("w, T", [(9.9, 20.0), (1.5, 8.0), (0.01, 5.0), (0.3, 0.2), (0.5, 1.6)])
 def test_gram_matrix_against_quadrature(w, T):
     """The closed-form Gram matrix of (1, T - t, cos w t, sin w t) against mpmath's
     quadrature at 20 digits (a piece per ~6 rad of w t): a 0.1 m sling over 20 s (w T =
     198, where a Gauss rule of too few nodes went wrong), a usual move, and two short
     ones (w T = 0.05 and 0.06, where 1 - cos and x - sin x lose every digit unless
-    written without cancellation): each entry to 1e-12 of itself (sin(198) in double
+    written without cancellation), and w T = 0.8, 2 w T = 1.6 (past the series' range 0.1:
+    its truncation there would be 1e-7): each entry to 1e-12 of itself (sin(198) in double
     precision carries 1e-16 absolute, 2e-13 of the smallest entry there)."""
     G = sf._gram(w, T)
     ref = np.zeros((4, 4))
