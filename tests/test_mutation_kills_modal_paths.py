@@ -406,9 +406,12 @@ def test_gravity_buckling_of_a_bar_above_its_hinge():
     # hanging below its hinge: gravity only stiffens -> never buckles
     b = gravity_buckling(bar(-1, k))
     assert b.factor == math.inf and b.mode.tolist() == [0.0]
-    # no spring: nothing restrains it elastically
-    with pytest.raises(AnalysisError, match="restrained"):
+    assert b.labels == ("body bar ry",)
+    # no spring: nothing restrains it elastically (the whole message and its fix)
+    with pytest.raises(AnalysisError) as exc:
         gravity_buckling(bar(+1, 0))
+    assert str(exc.value).startswith("buckling under gravity needs every motion restrained "
+                                     "elastically (the elastic stiffness is not positive ")
 
 
 def test_gravity_buckling_picks_the_weaker_of_two_bars():
