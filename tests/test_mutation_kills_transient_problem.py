@@ -1,0 +1,259 @@
+"""Fast kill tests for cranefe/analysis/transient/problem.py (tools/mutation.py
+transient_problem; docs/testing.md, "Mutation testing"): the equations `Problem` builds for
+the two-mass hoist of cranefe/cases.py, compared with the ones written out by hand.
+
+The hoist (cases.two_mass_hoist, sway off): coordinates q = (z, theta), z the load's
+vertical displacement (up), theta the drum angle (hauling in > 0); drum radius r = 0.25,
+inertia J = 500, load m = 5000 on n = 2 falls of one rope EA = 2e7 of length 30 + 20 n =
+70 m over the reeving, so one rope row R = [-n, r] (stretch r theta - n z), c = EA / 70,
+hanging force S0 = m g / n, holding torque r S0, weight f = (-m g, 0).
+- drum driven by a torque: F0 = (0, -r S0) (the brake's holding torque released), load
+  (e_theta, torque(t)); K_rest = K - R^T c R = 0 (the rope is the only stiffness);
+- by a speed: theta prescribed; grounded: the load's z held (contact, up = +1), S0 = 0
+  (the rope just taut), F0 = the weight the ground carries;
+- by a motor through a gearbox i (rotor inertia I_r adds I_r i^2 to J): MotorLoad
+  (e_theta, i); drum torque i M(i theta');
+- not driven: theta held (prescribed 0), reaction torque r S0 + residual;
+- highest natural frequency: free w^2 = k (n^2/m + r^2/J), drum held w^2 = n^2 k / m.
+Comparisons to 1e-12 relative (a few roundings) unless said.
+"""
+
+import math
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from cranefe import cases
+from cranefe.analysis.transient import problem as P
+from cranefe.analysis.transient.problem import Problem, highest_omega, subsystem
+from cranefe.analysis.transient.scene import parse
+from cranefe.errors import ModelError
+from cranefe.model import load
+from cranefe.system import assemble
+
+G = 9.81
+J, r, m, n, EA = 500.0, 0.25, 5000.0, 2, 2.0e7
+k = EA / (30 + 20 * n)
+S0 = m * G / n
+TOL = 1e-12
+
+
+def close(a, b, tol=TOL):
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    assert a.shape == b.shape
+    np.testing.assert_allclose(a, b, rtol=0, atol=tol * max(np.abs(b).max(initial=0), 1e-300))
+
+
+def make(tmp_path, analysis, effects="{sway: false}", model_text=None, name="s.yaml"):
+    text = model_text or cases.two_mass_hoist()[0]
+    mp = tmp_path / (name + ".model.yaml")
+    mp.write_text(text)
+    sp_ = tmp_path / name
+    sp_.write_text(f"cranefe: 1\nscene: t\nmodel: {mp}\neffects: {effects}\nanalysis:\n"
+                   f"  type: transient\n{analysis}")
+    model = load(sp_)
+    return Problem(model, parse(model))
+
+
+def common(p, J_=J):
+    assert p.labels == ("node B z", "drum hoist") and p.n == 2
+    close(p.eq.M, np.diag([m, J_]))
+    close(p.eq.K, np.zeros((2, 2)), 1e-9)     # K - R^T c R: k n^2 = 1.1e6 cancelled
+    assert np.abs(p.eq.K).max() <= 1e-9 * k * n * n
+    close(p.eq.R, [[-n, r]])
+    close(p.R.toarray(), [[-n, r]])
+    close(p.eq.c, [k])
+    close(p.hanging, [S0])
+    assert p.drum_q == {0: 1}
+    assert list(p.rope_of_row) == [0]
+    close(p.system.f, [-m * G, 0.0])
+    assert p.force_scale == pytest.approx(m * G, rel=TOL)
+    assert p.length_scale == p.model.length_scale
+
+
+def test_torque_drive(tmp_path):
+    p = make(tmp_path, "  drums:\n    hoist: {torque: 1000, ramp: 0.2}\n")
+    common(p)
+    close(p.eq.S0, [S0])
+    close(p.S0, [S0])
+    close(p.hold, [-n * S0, r * S0])
+    close(p.eq.F0, [0.0, -r * S0])
+    assert p.eq.prescribed == {} and p.prescribed == {}
+    assert len(p.eq.contacts) == 0 and len(p.eq.up) == 0
+    assert list(p.free) == [0, 1] and p.sub is p.system
+    assert p.eq.motors == [] and p.warnings == []
+    assert p.drive_of[0][0] == "torque"
+    assert p.C is None and p.eq.C is None and not p.eq.has_damping
+    [(Gm, s)] = p.eq.loads
+    close(Gm, [[0.0], [1.0]])
+    close(s.value(0.1), [500.0])                    # the ramp 1000 t / 0.2
+    close(s.d(0.1), [5000.0])
+    close(s.d(0.2, True), [5000.0])
+    close(s.d(0.2), [0.0])
+    close(p.eq.force(0.1), [0.0, 500.0 - r * S0])
+    q, v, a = np.array([0.01, 0.3]), np.array([0.1, 2.0]), np.array([1.0, 3.0])
+    close(p.drum_torque(0.1, q, v, a, np.array([True])), [500.0])
+    # free: w^2 = k (n^2/m + r^2/J)
+    assert p.highest_omega() == pytest.approx(math.sqrt(k * (n * n / m + r * r / J)),
+                                              rel=1e-12)
+
+
+def test_held_drum_node_force_and_modal_damping(tmp_path):
+    psi = 0.2
+    text = cases.two_mass_hoist()[0].replace("hoist: {EA:", f"hoist: {{psi: {psi}, EA:")
+    p = make(tmp_path, "  forces:\n    B: {force: [100, 0, -5000], ramp: 0.5}\n",
+             "{sway: false, damping: modal}", text)
+    common(p)
+    close(p.eq.F0, [0.0, 0.0])
+    assert list(p.eq.prescribed) == [1]
+    pr = p.eq.prescribed[1]
+    close(pr(0.7), [0.0]); close(pr.integral(0.7), [0.0])
+    assert p.drive_of[0] == ("held", None)
+    assert list(p.free) == [0]
+    assert p.sub.dofs.labels == ("node B z",)
+    [(Gm, s)] = p.eq.loads
+    close(Gm, [[0.0, 0.0, 1.0], [0.0, 0.0, 0.0]])     # the node's (x, y, z) -> q: z only
+    close(s.value(0.25), [50.0, 0.0, -2500.0])
+    close(s.d(0.25), [200.0, 0.0, -10000.0])
+    close(p.eq.force(0.25), [-2500.0, 0.0])
+    assert p.warnings == ["force on node 'B': a part of it (100 N) acts where the node "
+                          "has no coordinate (effects) and is carried rigidly"]
+    # drum held: one mode z, w^2 = n^2 k / m, shape 1/sqrt(m); modal damping
+    # C = M V diag(2 zeta w) V^T M = 2 zeta w m at z, zeta = psi / (4 pi) (one element)
+    w = math.sqrt(n * n * k / m)
+    assert p.highest_omega() == pytest.approx(w, rel=1e-12)
+    close(p.eq.C, [[2 * psi / (4 * math.pi) * w * m, 0.0], [0.0, 0.0]], 1e-9)
+    assert p.eq.U is None and p.eq.has_damping
+    # reaction torque of the held drum: r S0 + residual; at rest and with a motion
+    q0 = np.zeros(2)
+    close(p.drum_torque(0.0, q0, q0, q0, np.array([True])), [r * S0])
+    q, v, a = np.array([0.01, 0.0]), np.array([0.1, 0.0]), np.array([1.0, 3.0])
+    hand = r * S0 + J * 3.0 + r * k * (-n * 0.01)
+    close(p.drum_torque(0.5, q, v, a, np.array([True])), [hand])
+
+
+def test_grounded_speed(tmp_path):
+    p = make(tmp_path, "  initial: grounded\n  drums:\n    hoist: {speed: 2.0}\n")
+    common(p)
+    close(p.eq.S0, [0.0])
+    close(p.hold, [0.0, 0.0])
+    close(p.eq.F0, [-m * G, 0.0])                  # the weight the ground carries
+    assert list(p.eq.contacts) == [0] and list(p.eq.up) == [1.0]
+    assert p.eq.contacts.dtype.kind == "i"
+    assert list(p.eq.prescribed) == [1] and p.drive_of[0][0] == "speed"
+    close(p.eq.prescribed[1](0.3), [2.0])
+    assert list(p.free) == [0] and p.eq.loads == []
+    q, v, a = np.array([0.0, 0.4]), np.array([0.0, 2.0]), np.array([0.0, 1.5])
+    # residual at theta: J a + r k (r theta) (the rope taut from zero force)
+    close(p.drum_torque(0.2, q, v, a, np.array([True])), [J * 1.5 + r * k * r * 0.4])
+    close(p.drum_torque(0.2, q, v, a, np.array([False])), [J * 1.5])
+
+
+def test_grounded_downward_z(tmp_path):
+    """Gravity along +z: the load's coordinate points down, up = -1."""
+    text = cases.two_mass_hoist()[0].replace("nodes: {D: [0, 0, 0], S: [0, 0, 30], "
+                                             "B: [0, 0, 10]}",
+                                             "nodes: {D: [0, 0, 0], S: [0, 0, -30], "
+                                             "B: [0, 0, -10]}\ngravity: [0, 0, 9.81]")
+    p = make(tmp_path, "  initial: grounded\n  drums:\n    hoist: {speed: 2.0}\n",
+             model_text=text)
+    assert list(p.eq.up) == [-1.0]
+    close(p.eq.F0, [m * G, 0.0])
+    close(p.eq.S0, [0.0])
+
+
+def test_motor_drive_through_a_gearbox(tmp_path):
+    text = cases.two_mass_hoist()[0].replace(
+        "inertia: 500.0}", "inertia: 500.0, motor: {rotor_inertia: 0.5, gear_ratio: 4}}")
+    p = make(tmp_path, "  drums:\n    hoist: {motor: {stall_torque: 15000, "
+                       "synchronous_speed: 10}}\n", model_text=text)
+    common(p, J + 0.5 * 16)
+    close(p.eq.F0, [0.0, -r * S0])
+    [ml] = p.eq.motors
+    close(ml.e, [0.0, 1.0])
+    assert ml.gear == 4.0 and ml.name == "hoist"
+    assert p.drive_of[0][0] == "motor" and p.eq.loads == [] and p.eq.prescribed == {}
+    v = np.array([0.3, 1.5])
+    torque = 4 * 15000 * (1 - 4 * 1.5 / 10)            # i M(i w)
+    close(p.drum_torque(0.0, np.zeros(2), v, np.zeros(2), np.array([True])), [torque])
+    close(p.eq.motor_force(v), [0.0, torque])
+    assert p.highest_omega() == pytest.approx(math.sqrt(k * (n * n / m + r * r / 508.0)),
+                                              rel=1e-12)
+
+
+def test_no_rope_elasticity(tmp_path):
+    with pytest.raises(ModelError, match="elastic ropes") as e:
+        make(tmp_path, "  drums:\n    hoist: {torque: 1000}\n",
+             "{sway: false, rope_elasticity: false}")
+    assert "effects.rope_elasticity" in str(e.value)
+
+
+def test_grounded_node_on_a_body(tmp_path):
+    text = cases.two_mass_hoist()[0].replace("ground: [D, S]", "ground: [D, S, B]")
+    with pytest.raises(ModelError, match="carried by a body or fixed") as e:
+        make(tmp_path, "  initial: grounded\n  grounded: [B]\n", model_text=text)
+    assert "analysis.grounded" in str(e.value)
+
+
+def test_subsystem():
+    text, _ = cases.two_mass_hoist()
+    import tempfile, pathlib
+    d = pathlib.Path(tempfile.mkdtemp())
+    (d / "m.yaml").write_text(text)
+    system = assemble(load(d / "m.yaml"))
+    sub = subsystem(system, [1])
+    assert sub.dofs.labels == ("drum hoist",)
+    assert sub.dofs.kinds == (system.dofs.kinds[1],)
+    close(sub.K.toarray(), [[k * r * r]])
+    close(sub.M.toarray(), [[J]])
+    close(sub.f, [0.0])
+    close(sub.dofs.T.toarray(), system.dofs.T.toarray()[:, [1]])
+    assert sp.issparse(sub.K) and sp.issparse(sub.M)
+
+
+def chain(masses, kk=1.0e6):
+    """A fixed-free chain of springs kk along x with the given masses (0: massless)."""
+    N = len(masses)
+    nodes = "{G: [0, 0, 0], " + ", ".join(f"N{i}: [{i + 1}, 0, 0]" for i in range(N)) + "}"
+    ends = ["G"] + [f"N{i}" for i in range(N)]
+    springs = "\n".join(f"  - {{name: k{i}, type: axial, nodes: [{a}, {b}], stiffness: {kk}}}"
+                        for i, (a, b) in enumerate(zip(ends[:-1], ends[1:])))
+    mass = "{" + ", ".join(f"N{i}: {mm}" for i, mm in enumerate(masses) if mm) + "}"
+    return (f"cranefe: 1\nname: chain\nplane: xz\ngravity: [0, 0, 0]\nnodes: {nodes}\n"
+            f"ground: [G]\nmasses: {mass}\nsprings:\n{springs}\neffects: {{sway: false}}\n")
+
+
+def system_of(tmp_path, text, name):
+    (tmp_path / name).write_text(text)
+    return assemble(load(tmp_path / name))
+
+
+def test_highest_omega_massless_node(tmp_path):
+    """G -k- m -k- (massless) -k- m: condensed, the two masses see k and k/2 in series:
+    K* = k [[3/2, -1/2], [-1/2, 1/2]], lambda = (k/m)(1 +- 1/sqrt 2)."""
+    s = system_of(tmp_path, chain([100.0, 0.0, 100.0]), "c.yaml")
+    assert highest_omega(s) == pytest.approx(math.sqrt(1e4 * (1 + 1 / math.sqrt(2))),
+                                             rel=1e-12)
+    s = system_of(tmp_path, chain([0.0, 0.0]), "z.yaml")
+    assert highest_omega(s) == 0.0
+
+
+def test_highest_omega_large(tmp_path):
+    """> 400 coordinates: Lanczos (tol 1e-4 on lambda, so 1e-4 on w) against the chain's
+    exact w_N = 2 sqrt(k/m) sin((2N - 1) pi / (2 (2N + 1)))."""
+    N = 402
+    text, ex = cases.spring_chain(N)
+    s = system_of(tmp_path, text, "big.yaml")
+    assert highest_omega(s) == pytest.approx(ex["omega"][-1], rel=1e-4)
+    # one massless node (the 3rd): condensed by its Schur complement, against a dense
+    # reference (the masses' K - K_ab K_bb^-1 K_ba, numpy's eigvalsh)
+    masses = [100.0] * N
+    masses[2] = 0.0
+    s = system_of(tmp_path, chain(masses), "bigb.yaml")
+    K = s.K.toarray()
+    a = np.flatnonzero(np.array(masses) > 0)
+    b = np.flatnonzero(np.array(masses) == 0)
+    Ks = K[np.ix_(a, a)] - K[np.ix_(a, b)] @ np.linalg.solve(K[np.ix_(b, b)], K[np.ix_(b, a)])
+    lam = np.linalg.eigvalsh(Ks / 100.0)[-1]
+    assert highest_omega(s) == pytest.approx(math.sqrt(lam), rel=1e-4)
