@@ -340,3 +340,56 @@ def test_factor(sparse):
     assert h.Z is None
     close(h.solve(b), np.linalg.solve(Af, b), 1e-10)
     close(h.solve_lowrank(b, None, None, None), np.linalg.solve(Af, b), 1e-10)
+
+
+# ------------------------------------------------------------------ survivors' kills
+def test_signal_rate_depends_on_time_and_unknown_rate_is_zero():
+    """The rate is called at t; an unknown rate is exactly 0 even where the value is 0
+    (not 0/0)."""
+    s = Signal(lambda t, left=False: np.array([t, 0.0]),
+               lambda t, left=False: np.array([2.0 * t, 0.0]))
+    close(s.d(1.5), [3.0, 0.0])
+    with np.errstate(all="raise"):
+        d = Signal(lambda t, left=False: np.array([0.0, t])).d(0.0)
+    assert np.all(d == 0.0) and np.all(np.isfinite(d))
+
+
+def test_dense_up_to_DENSE_OPS():
+    n = DENSE_OPS
+    eq = Equations(sp.identity(n, format="csr"), sp.identity(n, format="csr"))
+    assert eq.dense and not sp.issparse(eq.M)
+    eq = Equations(sp.identity(n + 1, format="csr"), sp.identity(n + 1, format="csr"))
+    assert not eq.dense
+
+
+def test_two_motors_add():
+    mot = Motor("linear", synchronous_speed=ns, stall_torque=Ms)
+    eq = Equations(np.diag([J, m]), np.eye(2),
+                   motors=[MotorLoad(np.array([1.0, 0.0]), mot, i_gear),
+                           MotorLoad(np.array([0.0, 1.0]), mot, 2.0)])
+    v = np.array([0.4, 3.0])
+    close(eq.motor_force(v), [i_gear * Ms * (1 - i_gear * 0.4 / ns),
+                              2.0 * Ms * (1 - 2.0 * 3.0 / ns)])
+
+
+def test_energy_soft_row():
+    """A row with 0 < c < 1 (a soft rope, N/m) counts like any other."""
+    eq = Equations(np.diag([J, m]), np.diag([kb, ks]), R=np.array([[0.0, 1.0]]),
+                   c=np.array([0.5]), S0=np.array([2.0]))
+    x = np.array([0.0, 3.0])
+    s = 2.0 + 0.5 * 3.0
+    hand = 0.5 * ks * 9.0 + 0.5 * 0.5 * (s / 0.5)**2 - 0.5 * 4.0 / 0.5 - 2.0 * 3.0
+    assert eq.energy(x, 0 * x) == pytest.approx(hand, rel=TOL)
+
+
+def test_known_empty_is_an_integer_index():
+    eq = hoist(contacts=np.array([1]), up=np.array([-1.0]))
+    idx, xq, xv, xa = eq.known(1.0, np.array([False]))
+    assert len(idx) == 0 and idx.dtype.kind == "i"
+    close(X[idx], np.zeros(0))             # usable as an index (a float array is not)
+
+
+def test_factor_keeps_its_free_set():
+    free = np.array([0, 2])
+    f = Factor(spd(3, 4), free)
+    assert f.free is free
