@@ -257,3 +257,52 @@ def test_highest_omega_large(tmp_path):
     Ks = K[np.ix_(a, a)] - K[np.ix_(a, b)] @ np.linalg.solve(K[np.ix_(b, b)], K[np.ix_(b, a)])
     lam = np.linalg.eigvalsh(Ks / 100.0)[-1]
     assert highest_omega(s) == pytest.approx(math.sqrt(lam), rel=1e-4)
+
+
+SHEAVE = """cranefe: 1
+name: sheave block
+plane: xz
+nodes: {D: [0, 0, 0], T: [0, 0, 30], N: [0, 0, 20], B: [0, 0, 10]}
+ground: [D, T]
+masses: {N: 1000.0, B: 5000.0}
+drums:
+  hoist: {node: D, radius: 0.25, inertia: 500.0}
+ropes:
+HANG  hoist: {EA: 2.0e7, path: [hoist, N, B]}
+effects: {sway: false}
+"""
+
+
+def test_grounded_tensions_of_a_structure(tmp_path):
+    """A sheave block N (1000 kg) hung from T by the rope `hang` (EA 1e7, 10 m); the hoist
+    rope (EA 2e7, 30 m) runs from the drum up over N and down to the load B (5000 kg) on
+    the ground. q = (z_N, z_B, theta); rows hang [-1, 0, 0], hoist [2, -1, r].
+    Grounded: the hoist row is left out but for 1e-9 of its stiffness, so
+    S_hang = k_h m_N g / (k_h + 4e-9 k_hoist) (N's one equation), S_hoist = 0;
+    hanging: S_hoist = m_B g, S_hang = m_N g + 2 m_B g."""
+    kh, kho = 1.0e7 / 10, 2.0e7 / 30
+    text = SHEAVE.replace("HANG", "  hang: {EA: 1.0e7, path: [T, N]}\n")
+    p = make(tmp_path, "  initial: grounded\n  grounded: [B]\n", model_text=text)
+    assert p.labels == ("node N z", "node B z", "drum hoist")
+    close(p.R.toarray(), [[-1.0, 0.0, 0.0], [2.0, -1.0, r]])
+    close(p.c, [kh, kho])
+    close(p.S0, [kh * 1000 * G / (kh + 4e-9 * kho), 0.0])
+    close(p.hanging, [1000 * G + 2 * 5000 * G, 5000 * G])
+    close(p.eq.F0, [0.0, -5000 * G, 0.0])
+    assert list(p.eq.contacts) == [1] and list(p.eq.up) == [1.0]
+    close(p.hold, p.R.toarray().T @ p.S0)
+    assert p.force_scale == pytest.approx(1000 * G + 2 * 5000 * G, rel=TOL)
+    assert list(p.eq.prescribed) == [2] and list(p.free) == [0, 1]
+    close(p.eq.K, [[0.0] * 3] * 3, 1e-9)
+
+
+def test_grounded_mechanism(tmp_path):
+    """A mass N hung below the load B by a rope `tail`: with B on the ground (and N not)
+    the tail rope touches B and is left out, so nothing holds N."""
+    text = cases.two_mass_hoist()[0].replace(
+        "B: [0, 0, 10]}", "B: [0, 0, 10], N: [0, 0, 5]}").replace(
+        "masses: {B: 5000.0}", "masses: {B: 5000.0, N: 100.0}").replace(
+        "effects:", "  tail: {EA: 1.0e7, path: [B, N]}\neffects:")
+    with pytest.raises(ModelError, match="not held") as e:
+        make(tmp_path, "  initial: grounded\n  grounded: [B]\n", model_text=text)
+    assert "analysis.initial" in str(e.value)
