@@ -306,3 +306,17 @@ def test_grounded_mechanism(tmp_path):
     with pytest.raises(ModelError, match="not held") as e:
         make(tmp_path, "  initial: grounded\n  grounded: [B]\n", model_text=text)
     assert "analysis.initial" in str(e.value)
+
+
+def test_exact_damping(tmp_path):
+    """damping: exact, drum held: the rope is a dashpot b = psi k / (2 pi w) at the
+    hoisting frequency w = sqrt(n^2 k / m) (the one mode, which strains it), over its
+    whole row: C = b R^T R with R = [-n, r] (the drum's column too)."""
+    psi = 0.3
+    text = cases.two_mass_hoist()[0].replace("hoist: {EA:", f"hoist: {{psi: {psi}, EA:")
+    p = make(tmp_path, "  duration: 0.1\n", "{sway: false, damping: exact}", text)
+    w = math.sqrt(n * n * k / m)
+    b = psi * k / (2 * math.pi * w)
+    close(p.eq.C.toarray() if sp.issparse(p.eq.C) else p.eq.C,
+          b * np.array([[n * n, -n * r], [-n * r, r * r]]), 1e-12)
+    assert p.eq.U is None and p.eq.W is None
