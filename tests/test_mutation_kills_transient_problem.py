@@ -82,6 +82,7 @@ def test_torque_drive(tmp_path):
     assert p.eq.prescribed == {} and p.prescribed == {}
     assert len(p.eq.contacts) == 0 and len(p.eq.up) == 0
     assert list(p.free) == [0, 1] and p.sub is p.system
+    assert p.eq.contacts.dtype.kind == "i" and p.contacts.dtype.kind == "i"
     assert p.eq.motors == [] and p.warnings == []
     assert p.drive_of[0][0] == "torque"
     assert p.C is None and p.eq.C is None and not p.eq.has_damping
@@ -186,14 +187,19 @@ def test_no_rope_elasticity(tmp_path):
     with pytest.raises(ModelError, match="elastic ropes") as e:
         make(tmp_path, "  drums:\n    hoist: {torque: 1000}\n",
              "{sway: false, rope_elasticity: false}")
-    assert "effects.rope_elasticity" in str(e.value)
+    msg = str(e.value)
+    assert msg.startswith(str(tmp_path / "s.yaml") + ": effects.rope_elasticity: ")
+    assert msg.endswith("a transient needs elastic ropes (their forces are what it "
+                        "computes); remove rope_elasticity: false")
 
 
 def test_grounded_node_on_a_body(tmp_path):
     text = cases.two_mass_hoist()[0].replace("ground: [D, S]", "ground: [D, S, B]")
     with pytest.raises(ModelError, match="carried by a body or fixed") as e:
         make(tmp_path, "  initial: grounded\n  grounded: [B]\n", model_text=text)
-    assert "analysis.grounded" in str(e.value)
+    assert str(e.value) == (f"{tmp_path / 's.yaml'}: analysis.grounded: node 'B' is carried "
+                            "by a body or fixed; a load resting on the ground must be a "
+                            "point mass at a node of its own")
 
 
 def test_subsystem():
@@ -320,3 +326,15 @@ def test_exact_damping(tmp_path):
     close(p.eq.C.toarray() if sp.issparse(p.eq.C) else p.eq.C,
           b * np.array([[n * n, -n * r], [-n * r, r * r]]), 1e-12)
     assert p.eq.U is None and p.eq.W is None
+    assert p.C is p.eq.C or np.array_equal(np.asarray(p.C.todense()), np.asarray(p.eq.C))
+    model = p.model
+    q = Problem(model, parse(model), damping=False)    # modal superposition damps itself
+    assert q.C is None and q.eq.C is None and not q.eq.has_damping
+
+
+def test_force_along_the_coordinate_no_warning(tmp_path):
+    """A force along the load's coordinate loses nothing: no warning (the part lost is
+    rounding, far below 1e-9 of the force)."""
+    p = make(tmp_path, "  forces:\n    B: {force: [0, 0, 3000]}\n")
+    assert p.warnings == []
+    close(p.eq.force(1.0), [3000.0, 0.0])
