@@ -237,6 +237,14 @@ PRESETS = {
     "buckling": ("cranefe/analysis/buckling.py",
                  ["tests/test_mutation_kills_modal_paths.py",
                   "tests/test_structures.py::test_column_buckles_under_its_own_weight_at_greenhill"]),
+    # transient equations: the Equations/Factor objects alone, on a hand-built two-mass
+    # hoist (no model, no stepping: ~0.3 s of test work per mutant)
+    "transient_equations": ("cranefe/analysis/transient/equations.py",
+                            ["tests/test_mutation_kills_transient_equations.py"]),
+    # transient problem: the equations Problem builds for the two-mass hoist (and a
+    # sheave block, a spring chain) against hand-written ones; no time stepping
+    "transient_problem": ("cranefe/analysis/transient/problem.py",
+                          ["tests/test_mutation_kills_transient_problem.py"]),
 }
 
 
