@@ -26,15 +26,16 @@ def cart(kr, kE, far=None):
     spring kr (ground to p) and a horizontal axial spring kE from p's top E (z = 2L) to
     the ground. far = (k, m): a separate body of mass m on a horizontal slider and an
     axial spring k to the ground (an uncoupled third coordinate, w^2 = k / m)."""
-    springs = [f"  - {{name: r, type: rotational, bodies: [ground, p], at: H, "
-               f"stiffness: {kr!r}}}",
+    springs = [(f"  - {{name: r, type: rotational, bodies: [ground, p], at: H, "
+                f"stiffness: {kr!r}}}"),
                f"  - {{name: e, type: axial, nodes: [E, W], stiffness: {kE!r}}}"]
-    nodes, masses, joint = "", "", ""
+    nodes, body, joint = "", "", ""
     if far:
         nodes = ", N: [20, 0, 0], Q: [15, 0, 0]"
-        masses = (f"  f: {{mass: {far[1]!r}, com: [20, 0, 0], inertia: 1.0, nodes: [N]}}\n")
+        body = f"  f: {{mass: {far[1]!r}, com: [20, 0, 0], inertia: 1.0, nodes: [N]}}\n"
         joint = "  - {type: slider, bodies: [ground, f], at: N, axis: [1, 0, 0]}\n"
-        springs.append(f"  - {{name: f, type: axial, nodes: [Q, N], stiffness: {far[0]!r}}}")
+        springs.append(f"  - {{name: f, type: axial, nodes: [Q, N], "
+                       f"stiffness: {far[0]!r}}}")
     return load("cart.yaml", f"""cranefe: 1
 plane: xz
 nodes: {{H: [0, 0, 0], E: [0, 0, {2 * L}], W: [-5, 0, {2 * L}]{nodes}}}
@@ -42,7 +43,7 @@ ground: [W{", Q" if far else ""}]
 bodies:
   c: {{mass: {MC}, com: [0, 0, 0], inertia: 10.0, nodes: [H]}}
   p: {{mass: {MP}, com: [0, 0, {L}], inertia: {IC}, nodes: [E]}}
-{masses}joints:
+{body}joints:
   - {{type: slider, bodies: [ground, c], at: H, axis: [1, 0, 0]}}
 {joint}  - {{type: hinge, bodies: [c, p], at: H}}
 springs:
