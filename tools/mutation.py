@@ -221,17 +221,6 @@ PRESETS = {
     "loads_runs": ("cranefe/analysis/loads/runs.py",
                    ["tests/test_mutation_kills_loads_scene.py",
                     "tests/test_mutation_kills_loads_analysis.py"]),
-    # analysis/modal.py: dense, sparse (massless node condensed in the operator), rigid
-    # and unstable modes, graded paths and the Cholesky fallback, drive_reduction (~10 s)
-    "modal": ("cranefe/analysis/modal.py",
-              ["tests/test_mutation_kills_modal_paths.py",
-               "tests/test_graded.py::test_negative_load_stiffness_merged_locally",
-               "tests/test_mutation_kills_condense_massless_map.py"]),
-    # analysis/graded.py: element factor, energy, merged negative parts, massless rows,
-    # Jacobi SVD; graded models against mpmath (~15 s with test_graded.py)
-    "graded": ("cranefe/analysis/graded.py",
-               ["tests/test_mutation_kills_modal_paths.py", "tests/test_graded.py",
-                "tests/test_mutation_kills_condense_massless_map.py"]),
     # analysis/buckling.py: critical gravity factor k/(m g l) of bars above hinges,
     # never-buckling cases, the Greenhill column (~12 s)
     "buckling": ("cranefe/analysis/buckling.py",
@@ -245,6 +234,16 @@ PRESETS = {
     # sheave block, a spring chain) against hand-written ones; no time stepping
     "transient_problem": ("cranefe/analysis/transient/problem.py",
                           ["tests/test_mutation_kills_transient_problem.py"]),
+    # modal, graded: + the mass-coupled Cholesky fallback and two-coordinate merges
+    "modal": ("cranefe/analysis/modal.py",
+              ["tests/test_mutation_kills_modal_paths.py",
+               "tests/test_mutation_kills_modal_graded.py",
+               "tests/test_graded.py::test_negative_load_stiffness_merged_locally",
+               "tests/test_mutation_kills_condense_massless_map.py"]),
+    "graded": ("cranefe/analysis/graded.py",
+               ["tests/test_mutation_kills_modal_paths.py",
+                "tests/test_mutation_kills_modal_graded.py", "tests/test_graded.py",
+                "tests/test_mutation_kills_condense_massless_map.py"]),
 }
 
 
