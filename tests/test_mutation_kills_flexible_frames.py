@@ -162,3 +162,30 @@ def test_power_of_two_translating_frames(tmp_path):
             assert min(abs(h[0]["P"]), abs(h[1]["P"])) > 1e-3 * scale
         else:
             assert h[0]["P"] == 0.0 and abs(h[1]["P"]) > 1.0
+
+
+def test_static_state_with_a_rope_slack_at_rest(tmp_path):
+    """settle() with a tie from the jib's tip T down to a ground point B (1 m out, 6 m
+    below): the reference geometry has it at its unstretched length (no load on it:
+    S0 = 0), the tip's weight bends the jib down and shortens it, so it is slack in the
+    static state and the tip deflects as without it, P L^3 / (3 EI) with
+    P = (1500 + rho A L / 2) g (to 1e-10 relative, as the jib test of
+    test_mutation_kills_flexible.py); the tie's force 0 and slack, the load rope's
+    1500 g. (A tie held taut would push the tip up: 2.5e6 N/m against the jib's
+    7.3e6 N/m.)"""
+    from test_mutation_kills_flexible import DIRECT
+    text = (DIRECT.replace("  HOOK: [12.0, 0.0, 12.0]\n",
+                           "  HOOK: [12.0, 0.0, 12.0]\n  B:    [13.0, 0.0, 14.0]\n")
+            .replace("ground: [A, D]", "ground: [A, D, B]")
+            .replace("path: [T, HOOK]}", "path: [T, HOOK]}\n  tie: {EA: 2.0e7, path: [T, B]}"))
+    assert text.count("B:") == 1 and "tie:" in text
+    model = load(write(tmp_path, text, "  duration: 1\n", IYVAL=2.0e-2, NEL=1,
+                       MASS="lumped", GVAL=-9.81))
+    mech = Mechanism(model, parse(model))
+    assert mech.flex.labels() == ["T.ux", "T.uz"]
+    o = mech.nc + mech.nJ
+    P = (1500 + 7850 * 0.012 * 12 / 2) * 9.81
+    w = P * 12**3 / (3 * 2.1e11 * 2.0e-2)
+    np.testing.assert_allclose(mech.q0[o + 1], -w, rtol=1e-10)
+    np.testing.assert_allclose(mech.S0, [1500 * 9.81, 0.0], rtol=1e-12, atol=0)
+    assert mech.taut0.tolist() == [True, False]
