@@ -189,3 +189,44 @@ def test_static_state_with_a_rope_slack_at_rest(tmp_path):
     np.testing.assert_allclose(mech.q0[o + 1], -w, rtol=1e-10)
     np.testing.assert_allclose(mech.S0, [1500 * 9.81, 0.0], rtol=1e-12, atol=0)
     assert mech.taut0.tolist() == [True, False]
+
+
+
+ARM = """cranefe: 1
+name: a blade on a hub and a free arm beside it
+gravity: [0, 0, -9.81]
+nodes:
+  O: [0, 0, 0]
+  T: [10.0, 0, 0]
+  P: [-5.0, 0, 0]
+  Q: [-5.0, 0, -2.0]
+ground: [P]
+bodies:
+  hub: {mass: 10, com: [0, 0, 0], inertia: [1, 1, 1], nodes: [O]}
+  arm: {mass: 50, com: [-5, 0, -2], inertia: [1, 1, 1], nodes: [Q]}
+joints:
+  - {name: spin, type: hinge, bodies: [ground, hub], at: O, axis: [0, 0, 1]}
+  - {name: swing, type: hinge, bodies: [ground, arm], at: P, axis: [0, 1, 0]}
+members:
+  blade: {type: beam, nodes: [O, T], E: 2.1e+11, G: 8.0e+10, A: 0.1, Iy: 1.0e-2,
+          Iz: 1.0e-2, J: 2.0e-2, rho: 78.5, orientation: [0, 0, 1], elements: 1,
+          mass: lumped}
+"""
+
+
+def test_static_state_beside_a_joint_coordinate(tmp_path):
+    """A free hinge beside the elastic blade (an arm hanging at rest below its pivot P:
+    a joint coordinate, before the elastic ones) leaves the blade's static state as
+    without it: the tip's deflection m g L^3 / (3 EI), m = rho A L / 2, and its axial
+    shortening 0.6 w^2 / L (to 1e-8 of w: the Green strain's higher terms are
+    (w / L)^2 = 4e-11 relative)."""
+    model = load(write(tmp_path, ARM, "  duration: 1\n  drives:\n    sp: {hinge: spin, "
+                       "profile: {type: table, speed: [[0, 0], [2, 1.2]]}}\n"
+                       "    sw: {hinge: swing, free: true}\n"))
+    mech = Mechanism(model, parse(model))
+    assert mech.nJ == 1 and mech.nc == 0 and mech.n == 1 + 3
+    assert mech.flex.labels() == ["T.ux", "T.uy", "T.uz"]
+    w = 78.5 * 0.1 * 10 / 2 * 9.81 * 10**3 / (3 * 2.1e11 * 1.0e-2)
+    u = [-0.6 * w * w / 10, 0.0, -w]          # shortened by 0.6 w^2 / L (delta = 0)
+    np.testing.assert_allclose(mech.q0[1:], u, rtol=1e-8, atol=1e-8 * w)
+    np.testing.assert_allclose(mech.flex.u0, u, rtol=1e-8, atol=1e-8 * w)
