@@ -187,6 +187,7 @@ PRESETS = {
     # pendulum run in the kill tests, plus the fast inextensible runs (< 1 s each)
     "constraints": ("cranefe/analysis/operation/constraints.py",
                     ["tests/test_mutation_kills_constraints.py",
+                     "tests/test_mutation_kills_constraints_refresh.py",
                      "tests/test_operation_inextensible.py::test_load_thrown_up_goes_slack_and_is_jerked_taut",
                      "tests/test_operation_inextensible.py::test_torque_drum_hoists_with_the_drums_inertia",
                      "tests/test_operation_inextensible.py::test_hoisting_at_constant_speed_without_sway_is_m_g",
@@ -196,6 +197,7 @@ PRESETS = {
     # tests/test_operation_flexible.py (its runs take minutes: left out)
     "flexible": ("cranefe/analysis/operation/flexible.py",
                  ["tests/test_mutation_kills_flexible.py",
+                  "tests/test_mutation_kills_flexible_frames.py",
                   "tests/test_operation_flexible.py::test_spinning_cantilever_stiffens_southwell",
                   "tests/test_operation_flexible.py::test_linearisation_equals_the_linear_core",
                   "tests/test_operation_flexible.py::test_truss_and_spring_structure_equals_the_linear_core",
