@@ -25,7 +25,6 @@ import pytest
 import scipy.sparse as sp
 
 from cranefe import cases
-from cranefe.analysis.transient import problem as P
 from cranefe.analysis.transient.problem import Problem, highest_omega, subsystem
 from cranefe.analysis.transient.scene import parse
 from cranefe.errors import ModelError
