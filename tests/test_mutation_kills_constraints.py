@@ -27,6 +27,7 @@ import types
 
 import numpy as np
 import pytest
+from test_operation_massless import BLOCK
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 from test_operation import WINCH, mechanism, scene
@@ -333,22 +334,6 @@ def test_jerk_by_a_hauling_drum(tmp_path):
 
 
 # ------------------------------------------------------------------ massless blocks
-BLOCK = """cranefe: 1
-name: load on a sling below a massless block on 2 falls
-plane: xz
-nodes:
-  W: [-5, 0, 20]
-  S: [0, 0, 20]
-  B: [0, 0, 10]
-  L: [0, 0, 7]
-ground: [W, S]
-masses: {L: 1000}
-drums:
-  hoist: {node: W, radius: 0.5, inertia: 10, rope_reserve: 100}
-ropes:
-  hoist: {EA: 1.0e7, path: [hoist, S, {node: B, falls: 2}]}
-  sling: {EA: 5.0e6, path: [B, L]}
-"""
 EA_H, EA_S, R_DRUM, W_DRUM = 1.0e7, 5.0e6, 0.5, 0.4
 
 

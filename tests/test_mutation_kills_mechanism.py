@@ -39,6 +39,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_operation_massless import BLOCK
 
 from cranefe.analysis.operation.mechanism import Mechanism
 from cranefe.analysis.operation.scene import parse
@@ -1177,22 +1178,6 @@ def test_power_of_a_hoist_drum_and_a_trolley_on_a_rope_and_a_spring():
     np.testing.assert_allclose(ev.F, [0, -m * G] - (S + N) * e2, rtol=1e-9)
 
 
-BLOCK = """cranefe: 1
-name: load on a sling below a massless block on 2 falls
-plane: xz
-nodes:
-  W: [-5, 0, 20]
-  S: [0, 0, 20]
-  B: [0, 0, 10]
-  L: [0, 0, 7]
-ground: [W, S]
-masses: {L: 1000}
-drums:
-  hoist: {node: W, radius: 0.5, inertia: 10, rope_reserve: 100}
-ropes:
-  hoist: {EA: 1.0e7, path: [hoist, S, {node: B, falls: 2}]}
-  sling: {EA: 5.0e6, path: [B, L]}
-"""
 
 
 def test_a_massless_block_by_hand():

@@ -271,11 +271,10 @@ def test_slightly_unstable_is_caught_not_zero():
         modes(bar(+1, m * G * l * (1 - 1e-4)))
 
 
-def test_unstable_sparse_with_several_moving_coordinates():
-    # two bars above their hinges (independent), one unstable; sparse with count 1 < 2
-    m, l, Ic = 800.0, 3.0, 900.0
-    k1, k2 = 0.5 * m * G * l, 3.0e5
-    text = f"""cranefe: 1
+def _two_bars(k1, k2, m=800.0, l=3.0, Ic=900.0):
+    """Two independent bars hinged at O and P with their centres of mass l above the
+    hinges, on rotational springs k1 and k2 (N m/rad) to the ground."""
+    return load("two.yaml", f"""cranefe: 1
 plane: xz
 nodes: {{O: [0, 0, 0], E: [0, 0, 6], P: [10, 0, 0], F: [10, 0, 6]}}
 bodies:
@@ -287,19 +286,22 @@ joints:
 springs:
   - {{name: s1, type: rotational, bodies: [ground, a], at: O, stiffness: {k1!r}}}
   - {{name: s2, type: rotational, bodies: [ground, b], at: P, stiffness: {k2!r}}}
-"""
+""")
+
+
+def test_unstable_sparse_with_several_moving_coordinates():
+    # two bars above their hinges (independent), one unstable; sparse with count 1 < 2
+    m, l, Ic = 800.0, 3.0, 900.0
     with pytest.raises(AnalysisError, match="not a stable equilibrium"):
-        modes(load("two.yaml", text), solver="sparse", count=1)
-    stable = text.replace(f"stiffness: {k1!r}", "stiffness: 1.0e5")
-    r = modes(load("two.yaml", stable), solver="sparse", count=1)
+        modes(_two_bars(0.5 * m * G * l, 3.0e5), solver="sparse", count=1)
+    r = modes(_two_bars(1.0e5, 3.0e5), solver="sparse", count=1)
     IO = Ic + m * l * l
     assert r.omega == pytest.approx([math.sqrt((1.0e5 - m * G * l) / IO)], rel=SPARSE)
     assert r.rigid.tolist() == [False]
     # a neutral one (k = m g l exactly cancels to round-off): a rigid mode, not an error
     # (the element terms k and -m g l cancel), on both paths
-    neutral = text.replace(f"stiffness: {k1!r}", f"stiffness: {m * G * l!r}")
     for solver in ("sparse", "dense"):
-        r = modes(load("two.yaml", neutral), solver=solver, count=1)
+        r = modes(_two_bars(m * G * l, 3.0e5), solver=solver, count=1)
         assert r.rigid.tolist() == [True] and r.omega[0] == 0.0
         assert r.quasi_cyclic == ("body a ry",)
         assert not r.warnings or all("stable" not in w for w in r.warnings)
@@ -417,22 +419,9 @@ def test_gravity_buckling_of_a_bar_above_its_hinge():
 def test_gravity_buckling_picks_the_weaker_of_two_bars():
     # two independent bars above their hinges, k/(m g l) = 3 and 1.5: factor 1.5 and the
     # mode is the second bar's rotation alone, max |q| = 1
-    m, l, Ic = 800.0, 3.0, 900.0
+    m, l = 800.0, 3.0
     mgl = m * G * l
-    text = f"""cranefe: 1
-plane: xz
-nodes: {{O: [0, 0, 0], E: [0, 0, 6], P: [10, 0, 0], F: [10, 0, 6]}}
-bodies:
-  a: {{mass: {m}, com: [0, 0, {l}], inertia: {Ic}, nodes: [O, E]}}
-  b: {{mass: {m}, com: [10, 0, {l}], inertia: {Ic}, nodes: [P, F]}}
-joints:
-  - {{type: hinge, bodies: [ground, a], at: O}}
-  - {{type: hinge, bodies: [ground, b], at: P}}
-springs:
-  - {{name: s1, type: rotational, bodies: [ground, a], at: O, stiffness: {3 * mgl!r}}}
-  - {{name: s2, type: rotational, bodies: [ground, b], at: P, stiffness: {1.5 * mgl!r}}}
-"""
-    model = load("two.yaml", text)
+    model = _two_bars(3 * mgl, 1.5 * mgl)
     s = assemble(model)
     b = gravity_buckling(model, system=s)
     assert b.factor == pytest.approx(1.5, rel=RTOL)
@@ -487,25 +476,12 @@ def test_sparse_rigid_drum_labelled_by_its_largest_component():
 def test_unstable_hidden_below_the_relative_check_is_caught():
     # bar a: k = m g l - 1 (w^2 = -1 / I_O, tiny beside bar b's k = 1e12 / I_O, below
     # 1e-9 of it): the element terms k and -m g l do not cancel to round-off -> raise
-    m, l, Ic = 800.0, 3.0, 900.0
-    mgl = m * G * l
-    text = f"""cranefe: 1
-plane: xz
-nodes: {{O: [0, 0, 0], E: [0, 0, 6], P: [10, 0, 0], F: [10, 0, 6]}}
-bodies:
-  a: {{mass: {m}, com: [0, 0, {l}], inertia: {Ic}, nodes: [O, E]}}
-  b: {{mass: {m}, com: [10, 0, {l}], inertia: {Ic}, nodes: [P, F]}}
-joints:
-  - {{type: hinge, bodies: [ground, a], at: O}}
-  - {{type: hinge, bodies: [ground, b], at: P}}
-springs:
-  - {{name: s1, type: rotational, bodies: [ground, a], at: O, stiffness: {mgl - 1!r}}}
-  - {{name: s2, type: rotational, bodies: [ground, b], at: P, stiffness: 1.0e12}}
-"""
+    m, l = 800.0, 3.0
+    model = _two_bars(m * G * l - 1, 1.0e12)
     with pytest.raises(AnalysisError, match="not a stable equilibrium"):
-        modes(load("hidden.yaml", text))
+        modes(model)
     with pytest.raises(AnalysisError, match="not a stable equilibrium"):
-        modes(load("hidden.yaml", text), solver="sparse", count=1)
+        modes(model, solver="sparse", count=1)
 
 
 @lru_cache(maxsize=None)
