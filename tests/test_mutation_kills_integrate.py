@@ -27,6 +27,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
+from test_mutation_kills_mechanism import trolley_xs
+from test_operation import scene
 
 from cranefe.analysis.operation import integrate as integ
 from cranefe.analysis.operation.integrate import StepControl, Stepper, simulate
@@ -44,13 +46,7 @@ def _dir():
 
 
 def _scene(name, model_text, analysis, effects="{}"):
-    d = _dir()
-    m = d / f"m_{name}.yaml"
-    m.write_text(model_text)
-    s = d / f"s_{name}.yaml"
-    s.write_text(f"cranefe: 1\nscene: t\nmodel: {m}\neffects: {effects}\n"
-                 f"analysis:\n  type: operation\n{analysis}")
-    return load(s)
+    return load(scene(_dir(), model_text, analysis, effects, name=f"s_{name}.yaml"))
 
 
 # ----------------------------------------------------------------- trolley pendulum
@@ -74,22 +70,10 @@ ropes:
 DURATION = 4.0
 
 
-def trolley(t):
-    """The trapezoid of distance 2, v_max 1, a_max 1 by hand: (s, s', s'')."""
-    if t < 1:
-        return 0.5 * t * t, t, 1.0
-    if t < 2:
-        return 0.5 + (t - 1), 1.0, 0.0
-    if t < 3:
-        u = t - 2
-        return 1.5 + u - 0.5 * u * u, 1 - u, -1.0
-    return 2.0, 0.0, 0.0
-
-
 def _rhs(t, y):
     """The load on its Hencky rope from the moving trolley (docs/operations.md)."""
     x, z, vx, vz = y
-    d = np.array([x - trolley(t)[0], z - L_REF])
+    d = np.array([x - trolley_xs(t)[0], z - L_REF])
     L = math.hypot(*d)
     L0 = L_REF * math.exp(-M_LOAD * G / EA_ROPE)
     S = EA_ROPE * math.log(L / L0) if L > L0 else 0.0
@@ -140,7 +124,7 @@ def test_trolley_pendulum_against_scipy():
     err = max(np.abs(P[:, 0] - ref[:, 0]).max(), np.abs(P[:, 2] - ref[:, 1]).max())
     assert err < 6e-5, err
     L0 = L_REF * math.exp(-M_LOAD * G / EA_ROPE)
-    xs = np.array([trolley(t)[0] for t in res.times])
+    xs = np.array([trolley_xs(t)[0] for t in res.times])
     L = np.hypot(ref[:, 0] - xs, ref[:, 1] - L_REF)
     S = EA_ROPE * np.log(L / L0)
     assert np.abs(res.rope_force[:, 0] - S).max() < 6e-5 * M_LOAD * G

@@ -39,6 +39,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_operation import scene
 from test_operation_massless import BLOCK
 
 from cranefe.analysis.operation.mechanism import Mechanism
@@ -60,13 +61,7 @@ _count = [0]
 
 def _scene(model_text, analysis, effects="{}"):
     _count[0] += 1
-    d = _dir()
-    m = d / f"m{_count[0]}.yaml"
-    m.write_text(model_text)
-    s = d / f"s{_count[0]}.yaml"
-    s.write_text(f"cranefe: 1\nscene: t\nmodel: {m}\neffects: {effects}\n"
-                 f"analysis:\n  type: operation\n{analysis}")
-    return load(s)
+    return load(scene(_dir(), model_text, analysis, effects, name=f"s{_count[0]}.yaml"))
 
 
 def _mech(model):
