@@ -40,6 +40,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from test_operation import scene
+from test_operation_flexible import JIB as FLEX_JIB
 from test_operation_massless import BLOCK
 
 from cranefe.analysis.operation.mechanism import Mechanism
@@ -735,24 +736,8 @@ def test_inextensible_ropes_with_a_joint_coordinate_are_refused():
     assert "drive 'd'" in exc.value.message
 
 
-JIB = """cranefe: 1
-name: planar elastic jib with a hanging load
-plane: xz
-nodes:
-  A:    [0.0, 0.0, 20.0]
-  D:    [-2.0, 0.0, 20.0]
-  T:    [12.0, 0.0, 20.0]
-  HOOK: [12.0, 0.0, 12.0]
-ground: [A, D]
-masses: {HOOK: 1500}
-drums:
-  hoist: {node: D, radius: 0.2, inertia: 5.0}
-ropes:
-  hoist_rope: {EA: 2.0e7, path: [hoist, T, HOOK]}
-members:
-  jib: {type: beam, nodes: [A, T], E: 2.1e+11, A: 0.012, Iy: 2.0e-2, rho: 7850,
-        elements: 2, mass: lumped}
-"""
+JIB = (FLEX_JIB.replace("GVAL", "-9.81").replace("IYVAL", "2.0e-2").replace("NEL", "2")
+       .replace("MASS", "lumped"))
 
 
 def test_an_elastic_structure_with_inextensible_ropes_is_refused():
