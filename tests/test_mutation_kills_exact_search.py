@@ -351,6 +351,42 @@ def _true_residual(d, nu, x):
     return np.linalg.norm(np.asarray(d) * x - nu * x) / (abs(nu) * np.linalg.norm(x))
 
 
+def _eig_op(lam, X, sigma):
+    """Z -> X diag(1 / (lam - sigma)) X^-1 Z: a shift-invert operator whose roots lam and
+    vectors X are given (the first-order space, 2n rows)."""
+    A = X @ np.diag(1 / (np.asarray(lam) - sigma)) @ np.linalg.inv(X)
+    return lambda Z: A @ Z
+
+
+def test_nearest_takes_the_upper_root_and_a_real_root_with_round_off():
+    """n = 2, M = I, mode v = e_1. (a) An underdamped pair -1 +/- 5 i in the start block, the
+    lower root's vector (1, 0, lam, 0) even a little more like v than the upper one's
+    (1, 0.01, lam, 0): the search must return the upper root. (b) An overdamped (real) root
+    -2000 whose computed Im is a round-off -1e-9 (5e-13 of |lam|, what a complex
+    factorisation leaves) and whose vector is mode v's: it is the mode's root and must be
+    taken; a threshold that scaled the round-off as 1e-9 / |lam| (5e-13 here, below the
+    round-off) would drop it and return a root of another mode (-2100 + 20 i, whose
+    vector holds none of v)."""
+    # (a) the conjugate pair, and two roots of the other coordinate far off
+    lam = np.array([-1 + 5j, -1 - 5j, -3 + 40j, -3 - 40j])
+    X = np.array([[1, 1, 0, 0], [0.01, 0, 1, 1], lam[:2].tolist() + [0, 0],
+                  [0, 0, lam[2], lam[3]]], complex)
+    sigma = -1 + 4.9j
+    Z0 = X[:, :2]
+    got = exact._nearest(_eig_op(lam, X, sigma), Z0, sigma, np.array([1.0, 0.0]),
+                         sp.identity(2, format="csr"), 2, upper=True)
+    assert abs(got - lam[0]) < 1e-8 * abs(lam[0])
+    # (b) the real root with a negative round-off Im, beside another mode's real root
+    lam = np.array([-2000 - 1e-9j, -2100 + 20j, -1e4, -1.1e4])
+    X = np.eye(4, dtype=complex)
+    X[:, 1] = [0, 1, 0, 0.5]
+    sigma = -2050 + 30j
+    Z0 = np.eye(4, dtype=complex)[:, :2]
+    got = exact._nearest(_eig_op(lam, X, sigma), Z0, sigma, np.array([1.0, 0.0]),
+                         sp.identity(2, format="csr"), 2, upper=True)
+    assert abs(got - lam[0]) < 1e-8 * abs(lam[0])
+
+
 def test_block_iteration_converges_to_its_tolerance():
     """Operator diag(0.05, 0.005, 0.002 i) from (1, 1, 1): the dominant pair converges by a
     factor 0.1 per step, so the iteration stops at a relative residual <= 1e-10 (checked
