@@ -339,3 +339,69 @@ def test_force_along_the_coordinate_no_warning(tmp_path):
     p = make(tmp_path, "  forces:\n    B: {force: [0, 0, 3000]}\n")
     assert p.warnings == []
     close(p.eq.force(1.0), [3000.0, 0.0])
+
+
+def test_highest_omega_lanczos_condenses_the_massless_node(tmp_path, monkeypatch):
+    """The Lanczos path (forced on the small chain by DENSE_OMEGA = 0) condenses the
+    massless node by its Schur complement: the same (k/m)(1 + 1/sqrt 2) as the dense
+    path, to Lanczos' 1e-4 (on two coordinates it is exact to rounding; without the
+    complement the masses would see K_aa = k diag(2, 1): w^2 = 2 k/m, 17 % off)."""
+    import cranefe.analysis.transient.problem as problem
+    monkeypatch.setattr(problem, "DENSE_OMEGA", 0)
+    s = system_of(tmp_path, chain([100.0, 0.0, 100.0]), "c.yaml")
+    assert highest_omega(s) == pytest.approx(math.sqrt(1e4 * (1 + 1 / math.sqrt(2))),
+                                             rel=1e-8)
+
+
+def _sheave_damped(tmp_path, psi=0.2):
+    """The sheave block (test_grounded_tensions_of_a_structure) hanging, drum held by a
+    speed profile, both ropes psi: free q = (z_N, z_B), M = diag(1000, 5000),
+    K = k_h [[1, 0], [0, 0]] + k_hoist [[4, -2], [-2, 1]] (rows [-1, 0], [2, -1]);
+    modal damping zeta = psi / (4 pi) in every mode (one psi for all elements), so
+    C = M V diag(2 zeta w) V^T M over the modes V (V^T M V = I) of that 2 x 2 problem."""
+    kh, kho = 1.0e7 / 10, 2.0e7 / 30
+    text = SHEAVE.replace("HANG", f"  hang: {{psi: {psi}, EA: 1.0e7, path: [T, N]}}\n")
+    text = text.replace("hoist: {EA:", f"hoist: {{psi: {psi}, EA:")
+    p = make(tmp_path, "  drums:\n    hoist: {speed: 0.0}\n",
+             "{sway: false, damping: modal}", text)
+    M = np.diag([1000.0, 5000.0])
+    K = kh * np.array([[1.0, 0.0], [0.0, 0.0]]) + kho * np.array([[4.0, -2.0], [-2.0, 1.0]])
+    lam, V = np.linalg.eigh(np.linalg.inv(np.sqrt(M)) @ K @ np.linalg.inv(np.sqrt(M)))
+    V = np.linalg.inv(np.sqrt(M)) @ V            # M-orthonormal mode shapes
+    return p, M, V, np.sqrt(lam), psi / (4 * math.pi)
+
+
+def test_modal_damping_kept_low_rank_above_dense_damping(tmp_path, monkeypatch):
+    """Above DENSE_DAMPING coordinates (forced: 0) the damping is handed to the
+    equations as U diag(W) U^T, U = M V, W = 2 zeta w (the drum's row zero), not formed."""
+    import cranefe.analysis.transient.problem as problem
+    monkeypatch.setattr(problem, "DENSE_DAMPING", 0)
+    p, M, V, w, zeta = _sheave_damped(tmp_path)
+    assert p.eq.C is None and p.eq.has_damping
+    C = p.eq.U @ (p.eq.W[:, None] * p.eq.U.T)
+    hand = np.zeros((3, 3))
+    hand[:2, :2] = M @ V @ np.diag(2 * zeta * w) @ V.T @ M
+    close(C, hand, 1e-9)
+    assert p.warnings == []
+
+
+def test_only_the_lowest_modes_damped_above_sparse_damping(tmp_path, monkeypatch):
+    """Above SPARSE_DAMPING free coordinates (forced: 0) only the SPARSE_DAMPED_MODES
+    (forced: 1) lowest modes are damped, C = 2 zeta w_1 M v_1 v_1^T M, and the scene is
+    warned; formed densely (DENSE_DAMPING coordinates or fewer)."""
+    import cranefe.analysis.transient.problem as problem
+    monkeypatch.setattr(problem, "SPARSE_DAMPING", 0)
+    monkeypatch.setattr(problem, "SPARSE_DAMPED_MODES", 1)
+    p, M, V, w, zeta = _sheave_damped(tmp_path)
+    C = p.eq.C.toarray() if sp.issparse(p.eq.C) else np.asarray(p.eq.C)
+    hand = np.zeros((3, 3))
+    hand[:2, :2] = 2 * zeta * w[0] * np.outer(M @ V[:, 0], M @ V[:, 0])
+    close(C, hand, 1e-9)
+    assert p.warnings == ["damping: the 1 lowest modes are damped, the others not"]
+    # the same model below the limit: both modes damped, no warning
+    monkeypatch.setattr(problem, "SPARSE_DAMPING", 1500)
+    p, M, V, w, zeta = _sheave_damped(tmp_path)
+    C = p.eq.C.toarray() if sp.issparse(p.eq.C) else np.asarray(p.eq.C)
+    hand[:2, :2] = M @ V @ np.diag(2 * zeta * w) @ V.T @ M
+    close(C, hand, 1e-9)
+    assert p.warnings == []

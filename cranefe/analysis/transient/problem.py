@@ -30,6 +30,8 @@ from .equations import Equations, MotorLoad, Signal
 from .scene import Profile
 
 DENSE_DAMPING = 400     # up to this many coordinates the modal damping matrix is formed
+DENSE_OMEGA = 400       # up to this many masses the highest frequency is found densely
+SPARSE_DAMPING = 1500   # above this many free coordinates only the lowest modes are damped
 SPARSE_DAMPED_MODES = 30  # modes damped on larger models (the others undamped)
 
 
@@ -56,7 +58,7 @@ def highest_omega(system):
     if not len(a):
         return 0.0
     Kaa = K[a][:, a]
-    if len(a) <= 400:
+    if len(a) <= DENSE_OMEGA:
         Ks = Kaa.toarray()
         if len(b):
             Ks -= K[a][:, b].toarray() @ np.linalg.solve(K[b][:, b].toarray(),
@@ -251,7 +253,7 @@ class Problem:
                                modal_damping_ratios)
         from ..modal import modes
         sub = self.sub
-        big = sub.K.shape[0] > 1500
+        big = sub.K.shape[0] > SPARSE_DAMPING
         modal = modes(self.model, system=sub, count=SPARSE_DAMPED_MODES if big else None)
         el = ~modal.rigid
         w = modal.omega[el]
