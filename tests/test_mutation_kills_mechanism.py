@@ -893,7 +893,7 @@ def test_damped_motor_arm_and_its_poses():
     np.testing.assert_allclose(ev.C, C, rtol=1e-9, atol=1e-9 * np.abs(C).max())
     mot, X = mech.poses(0.0, {"d": (phi, dphi)})
     np.testing.assert_allclose(X[1], [4 * c_, 0, 10 - 4 * s_], atol=1e-12)
-    arm = mech.jc[0]["child"]
+    arm = [b.name for b in mech.model.bodies].index("arm")
     R, dR, ddR, p, dp, ddp = mot[arm]
     X1 = np.array([4.0, 0, 10])
     np.testing.assert_allclose(dR @ X1 + dp, dphi * 4 * np.array([-s_, 0, -c_]), atol=1e-12)

@@ -95,7 +95,6 @@ class Mechanism:
         """Spanning tree of bodies from the ground over the joints; a driven joint must
         be a tree joint whose loop (if any) is closed only by held joints of static
         bodies."""
-        nb = len(model.bodies)
         driven = {d.index: d for d in self.spec.drives if d.target in ("hinge", "slider")}
         linear = [d for d in self.spec.drives if d.target == "linear"]
         self.linear = LinkageDrive(model, linear[0], driven) if linear else None
@@ -125,7 +124,6 @@ class Mechanism:
                 moving.add(b)
         if self.linear is not None:
             moving |= set(self.linear.bodies)
-        self.moving = moving
         for k, j in enumerate(model.joints):
             if k in used or (self.linear is not None and k in self.linear.joints):
                 continue
@@ -139,8 +137,6 @@ class Mechanism:
             if k not in used:
                 raise ModelError(f"{model.joints[k].label} closes a loop of bodies: "
                                  "driving it is not supported", model.scene_file, d.entry)
-        free_bodies = [model.bodies[b].name for b in range(nb) if b not in parent]
-        self.free_bodies = free_bodies
         self.driven_joints = driven
 
     def poses(self, t, joints):
@@ -345,7 +341,7 @@ class Mechanism:
         others; rho: the farthest point of the subtree from the axis)."""
         self.jc = []
         for b in self.order:
-            p, k = self.parent[b]
+            k = self.parent[b][1]
             d = self.driven_joints.get(k)
             if d is None or not d.coordinate:
                 continue
@@ -376,9 +372,8 @@ class Mechanism:
                                  "the bodies it carries have no mass; give them mass "
                                  "(bodies.NAME.mass) or prescribe a profile",
                                  model.scene_file or model.file, d.entry)
-            self.jc.append({"drive": d, "joint": k, "child": b, "parent": p,
-                            "hinge": hinge, "nodes": nodes, "rho": rho,
-                            "sign": 1.0 if j.bodies[1] == b else -1.0})
+            self.jc.append({"drive": d, "joint": k, "hinge": hinge, "nodes": nodes,
+                            "rho": rho})
         self.nJ = len(self.jc)
         self.jnodes = {int(i) for c in self.jc for i in c["nodes"]}
 
@@ -394,7 +389,6 @@ class Mechanism:
         kin = set(self.kin.tolist())
         ok = free | kin
         elastic = set() if self.flex is None else set(self.flex.model_nodes.tolist())
-        file = model.scene_file or model.file
         act, a, b, f, rid = [], [], [], [], []
         for k, rp in enumerate(model.ropes):
             nodes = set(rp.span_a.tolist()) | set(rp.span_b.tolist())
@@ -405,7 +399,7 @@ class Mechanism:
                 raise ModelError(f"rope '{rp.name}' runs over the massless free node(s) "
                                  f"{', '.join(model.node_names[i] for i in sorted(bad))}; "
                                  "operation scenes need every rope node on a body, the "
-                                 "ground or a point mass (massless blocks: not yet)", file,
+                                 "ground or a point mass (massless blocks: not yet)", model.file,
                                  f"ropes.{rp.name}")
             rid += [len(act)] * len(rp.falls)
             act.append(k)
@@ -430,7 +424,7 @@ class Mechanism:
             bad = set(s.nodes) - ok
             if bad:
                 raise ModelError(f"spring '{s.name}' ends at a massless free node; not "
-                                 "supported by operation scenes yet", file,
+                                 "supported by operation scenes yet", model.file,
                                  f"springs.{s.name}")
         self.springs = [k for k, _ in sp]
         self.sp_a = np.array([s.nodes[0] for _, s in sp], dtype=int)
@@ -459,7 +453,7 @@ class Mechanism:
                     raise ModelError(
                         f"with sway: false the load at node '{model.node_names[i]}' must "
                         f"hang vertically below '{model.node_names[above]}' (it is off by "
-                        f"{np.linalg.norm(hor):.4g} m); move it or turn sway on", file,
+                        f"{np.linalg.norm(hor):.4g} m); move it or turn sway on", model.file,
                         f"nodes.{model.node_names[i]}")
                 dirs.append((k, self.up.copy()))
         self.nc = len(dirs)                 # Cartesian coordinates of the point masses
@@ -532,7 +526,7 @@ class Mechanism:
         if best < 0:
             raise ModelError(f"the point mass at node '{model.node_names[i]}' hangs on no "
                              "rope or axial spring; an operation scene moves masses on "
-                             "ropes", model.scene_file or model.file,
+                             "ropes", model.file,
                              f"masses.{model.node_names[i]}")
         return best
 
@@ -1115,13 +1109,13 @@ class Mechanism:
             raise ModelError(f"the model's geometry is not a static equilibrium: the ropes "
                              f"and springs cannot hold the weight at node '{node}' there "
                              f"(unbalanced {np.abs(resid).max():.4g} N); hang the loads "
-                             "below their sheaves (an operation starts at rest)", file,
+                             "below their sheaves (an operation starts at rest)", model.file,
                              f"nodes.{node}")
         S0 = force[:nr]
         self.N_ref = force[nr:]
         for j in np.flatnonzero(S0 < 0):
             raise ModelError(f"rope '{model.ropes[self.ropes[j]].name}' would be in "
-                             f"compression at rest ({S0[j]:.4g} N)", file,
+                             f"compression at rest ({S0[j]:.4g} N)", model.file,
                              f"ropes.{model.ropes[self.ropes[j]].name}")
         self.S0 = S0
         # what holds each joint coordinate at rest (N m or N): -(gravity + ropes)
