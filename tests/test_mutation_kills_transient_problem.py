@@ -353,6 +353,18 @@ def test_highest_omega_lanczos_condenses_the_massless_node(tmp_path, monkeypatch
                                              rel=1e-8)
 
 
+@pytest.mark.parametrize("dense", [True, False])
+def test_highest_omega_below_one_radian_per_second(tmp_path, monkeypatch, dense):
+    """A soft chain G -k- m -k- m (k = 1 N/m, m = 100 kg): w^2 = (k/m)(3 + sqrt 5)/2,
+    w = 0.162 rad/s, on both paths (nothing may floor the eigenvalue at 1)."""
+    import cranefe.analysis.transient.problem as problem
+    if not dense:
+        monkeypatch.setattr(problem, "DENSE_OMEGA", 0)
+    s = system_of(tmp_path, chain([100.0, 100.0], kk=1.0), "soft.yaml")
+    assert highest_omega(s) == pytest.approx(math.sqrt(0.01 * (3 + math.sqrt(5)) / 2),
+                                             rel=1e-8)
+
+
 def _sheave_damped(tmp_path, psi=0.2):
     """The sheave block (test_grounded_tensions_of_a_structure) hanging, drum held by a
     speed profile, both ropes psi: free q = (z_N, z_B), M = diag(1000, 5000),
@@ -405,3 +417,46 @@ def test_only_the_lowest_modes_damped_above_sparse_damping(tmp_path, monkeypatch
     hand[:2, :2] = M @ V @ np.diag(2 * zeta * w) @ V.T @ M
     close(C, hand, 1e-9)
     assert p.warnings == []
+
+
+
+CANTILEVER = """cranefe: 1
+name: cantilever
+plane: xz
+gravity: [0, 0, 0]
+nodes: {O: [0, 0, 0], T: [4, 0, 0]}
+ground: [O]
+masses: {T: 100.0}
+members:
+  arm: {type: beam, nodes: [O, T], E: 2.1e11, A: 1.0e-3, Iy: 1.0e-6, rho: 0,
+        elements: 2, psi: 0.3}
+"""
+
+
+def test_exact_damping_of_beams_at_their_own_frequencies(tmp_path):
+    """damping: exact on a massless two-element cantilever (L = 4 m, tip mass m = 100 kg,
+    gravity off; the middle node and the rotations massless): two modes, bending
+    w_b^2 = 3 EI / (L^3 m) (cubic elements: exact for a tip load) and axial
+    w_a^2 = EA / (L m). Each element takes the mode that stores the larger share of its
+    strain energy (mass-normalised modes store w^2 in all, so the shares are the
+    fractions per element): bending, M = F (L - x), gives the root half
+    int_0^2 (4 - x)^2 / int_0^4 (4 - x)^2 = 7/8, the tip half 1/8; axial (uniform strain)
+    1/2 each. So the root element is a dashpot at w_b, the tip element at w_a:
+    C = psi / (2 pi) (K_root / w_b + K_tip / w_a), with the elements' stiffness matrices
+    (the assembly's, tested on their own) placed by the coordinate map."""
+    p = make(tmp_path, "  duration: 0.1\n", "{structure: flexible, damping: exact}",
+             CANTILEVER)
+    EI, EA, L, m = 2.1e11 * 1.0e-6, 2.1e11 * 1.0e-3, 4.0, 100.0
+    wb, wa = math.sqrt(3 * EI / (L**3 * m)), math.sqrt(EA / (L * m))
+    b, T = p.system.beams, p.system.dofs.T
+    Ke = []
+    for e in range(len(b.mat)):
+        Te = T[b.idx[e]].toarray()
+        Ke.append(Te.T @ b.mat[e] @ Te)
+    assert len(Ke) == 2
+    # the root element is the one with a grounded end: its matrix touches fewer
+    # coordinates (6 of the node pair are fixed at O)
+    root = int(np.argmin([np.count_nonzero(np.abs(k).sum(axis=0)) for k in Ke]))
+    C = p.eq.C.toarray() if sp.issparse(p.eq.C) else np.asarray(p.eq.C)
+    hand = 0.3 / (2 * math.pi) * (Ke[root] / wb + Ke[1 - root] / wa)
+    close(C, hand, 1e-9)
