@@ -150,3 +150,13 @@ def test_refusals_name_file_entry_and_fix(case):
         want = (model, "masses.Q", "the point mass at node 'Q' hangs on no rope or axial "
                 "spring; an operation scene moves masses on ropes")
     assert (str(e.file), e.entry, e.message) == (str(want[0]),) + want[1:]
+
+
+def test_a_rope_between_bodies_only_is_inactive():
+    """The luffing arm moved by a profile (no joint coordinate): its stay joins the ground
+    and the arm only, so it carries no computed force (listed as inactive, warned); the
+    hoist rope holds the load and is active."""
+    mech = _scene_mech(ARM, "  duration: 2\n  drives:\n    d: {hinge: luff, profile: "
+                            "{type: table, speed: [[0, 0.0]]}}\n")
+    assert mech.inactive_ropes == ["stay"]
+    assert [mech.model.ropes[k].name for k in mech.ropes] == ["hoist"]
