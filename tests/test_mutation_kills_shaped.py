@@ -185,9 +185,10 @@ def test_shape_motion_by_hand():
 
 def test_crane_modes_of_the_overhead_crane(tmp_path):
     m = scene(tmp_path, OVERHEAD, trolley())
-    w, hor, phi, mech = sp.crane_modes(m, parse(m), 0.0)
+    w, hor, vert, phi, mech = sp.crane_modes(m, parse(m), 0.0)
     assert np.allclose(w, [W_OH, W_HOIST], rtol=1e-9)
     assert np.allclose(hor, [1.0, 0.0], rtol=0, atol=1e-9)
+    assert np.allclose(vert, [0.0, 1.0], rtol=0, atol=1e-9)
     assert phi.shape == (len(w), len(w))
 
 
@@ -204,7 +205,7 @@ def test_auto_on_the_tower_crane(tmp_path):
     ref = _double_pendulum(33.4, 3.0, 250.0, 4000.0)
     m = scene(tmp_path, TOWER, trolley("5.0", "1.0", "0.5"))
     op = parse(m)
-    w, hor, _, _ = sp.crane_modes(m, op, 0.0)
+    w, hor, _, _, _ = sp.crane_modes(m, op, 0.0)
     pend = w[hor > 0.5]
     assert np.allclose(pend, np.repeat(ref, 2), rtol=1e-9)
     (i, s, ws), = drive(op, "trolley").motion.shapers
@@ -242,7 +243,7 @@ def test_auto_of_the_tower_crane_hoist_takes_only_the_lowest_vertical_mode(tmp_p
                 f"a_max: 1, shaper: {shaper}}}}}\n")
     m = scene(tmp_path, TOWER, hoist("{type: ZV}"))
     op = parse(m)
-    w, hor, _, _ = sp.crane_modes(m, op, 0.0)
+    w, hor, _, _, _ = sp.crane_modes(m, op, 0.0)
     vert = w[hor < 0.5]
     assert len(vert) == 2
     (_, s, ws), = drive(op, "hoist").motion.shapers
@@ -265,7 +266,7 @@ def test_static_state_of_a_moving_crane_is_at_rest(tmp_path):
     m = scene(tmp_path, OVERHEAD, drives)
     op = parse(m)
     for t in (0.5, 5.0, 15.0):
-        w, hor, _, _ = sp.crane_modes(m, op, t)
+        w, hor, _, _, _ = sp.crane_modes(m, op, t)
         assert np.allclose(w, [W_OH, W_HOIST], rtol=1e-9), t
     (i, _, ws), = drive(op, "trolley").motion.shapers
     assert i == 1 and ws == (pytest.approx(W_OH, rel=1e-9),)
@@ -449,9 +450,9 @@ def test_auto_with_a_free_joint(tmp_path):
                     "v_max: 1, a_max: 1, shaper: {type: ZV}}}\n")
     m = load(path)
     op = parse(m)
-    w, hor, phi, mech = sp.crane_modes(m, op, 0.0)
+    w, hor, vert, phi, mech = sp.crane_modes(m, op, 0.0)
     assert mech.nJ == 1 and phi.shape == (mech.nx, mech.nx) and len(w) == mech.nx
     assert np.all(np.isfinite(w)) and np.all((hor > -1e-9) & (hor < 1 + 1e-9))
     assert np.any(hor > 0.999)                                  # the hook's swing
     (_, s, ws), = drive(op, "hoist").motion.shapers
-    assert ws == (pytest.approx(w[hor < 0.5][0], rel=1e-12),)
+    assert ws == (pytest.approx(w[vert > 0.5][0], rel=1e-12),)

@@ -88,7 +88,7 @@ def test_auto_finds_both_modes_of_the_hook_and_load(tmp_path):
     3 m sling; its two pendulum modes are the double pendulum's closed form, each
     counted once (x and y swings are degenerate)."""
     m = scene(tmp_path, TOWER, 40, trolley(5.0, 1.0, 0.5, "{type: ZV}"))
-    w, hor, _, _ = crane_modes(m, parse(m), 0.0)
+    w, hor, _, _, _ = crane_modes(m, parse(m), 0.0)
     ref = double_pendulum_omegas(33.4, 3.0, 250.0, 4000.0)
     pend = w[hor > 0.5]
     assert len(pend) == 4                              # two modes, x and y each
@@ -96,6 +96,38 @@ def test_auto_finds_both_modes_of_the_hook_and_load(tmp_path):
     (_, s, ws), = next(x for x in parse(m).drives if x.name == "trolley").motion.shapers
     assert np.allclose(ws, ref, rtol=1e-9)
     assert len(s.times) == 4 and s.name == "ZV*ZV"
+
+
+
+def test_auto_on_an_elastic_jib_takes_the_pendulums_not_the_bending(tmp_path):
+    """The elastic jib crane (models/operations/elastic_jib_crane.yaml: hook 4 t on 2
+    falls 15 m below the tip of a 20 m jib, Iz = 1.5e-3 m^4 for horizontal bending),
+    slewed with ZV auto, and at a time when the superstructure has turned: the two
+    pendulum modes only (not the jib's bending modes, whose kinetic energy is the jib's),
+    and the hoisting bounce (mostly vertical) for the drum.
+    Hand values: radial swing, w^2 = g / L (the jib stiff along its axis; L = 15 m
+    lengthened by the rope's stretch, 4.9e-4 of the falls: 2.5e-4 on w); tangential swing
+    with the tip's lateral spring k = 3 E Iz / l^3 in series with the pendulum's m g / L:
+    1 / w^2 = L / g + m / k. Tolerance 1e-3: the jib's own (lumped) mass and the stretch
+    are left out of the hand values (measured 2e-4)."""
+    model = ROOT / "elastic_jib_crane.yaml"
+    m = scene(tmp_path, model, 12,
+              "    slew: {hinge: slewing, profile: {type: trapezoid, distance: 0.5, "
+              "v_max: 0.1, a_max: 0.05, shaper: {type: ZV, frequency: auto}}}\n"
+              "    hoist: {drum: hoist, profile: {type: trapezoid, distance: -4, v_max: 2, "
+              "a_max: 2, start: 10, shaper: {type: ZV, frequency: auto}}}\n")
+    L, mass, k = 15.0, 4000.0, 3 * 2.1e11 * 1.5e-3 / 20.0**3
+    radial, tangential = np.sqrt(G / L), 1 / np.sqrt(L / G + mass / k)
+    op = parse(m)
+    (_, s, ws), = next(x for x in op.drives if x.name == "slew").motion.shapers
+    assert s.name == "ZV*ZV" and len(s.times) == 4
+    assert ws == (pytest.approx(tangential, rel=1e-3), pytest.approx(radial, rel=1e-3))
+    for t in (0.0, 6.0):                  # the jib turned by 0.3 rad at 6 s
+        w, hor, vert, _, _ = crane_modes(m, op, t)
+        assert np.allclose(w[hor > 0.5], ws, rtol=1e-6)
+    (_, s, wh), = next(x for x in op.drives if x.name == "hoist").motion.shapers
+    w, hor, vert, _, _ = crane_modes(m, op, 10.0)       # where the hoisting starts
+    assert len(wh) == 1 and wh[0] == pytest.approx(w[vert > 0.5][0], rel=1e-9)
 
 
 # ------------------------------------------------------------------ through the engine

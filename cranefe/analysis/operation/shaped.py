@@ -117,10 +117,11 @@ class ShapedMotion(profiles.Motion):
 # ------------------------------------------------------------------ the crane's modes
 
 def crane_modes(model, op, t, newton_tol=1e-10):
-    """Frequencies (rad/s), horizontal kinetic-energy fractions and mode shapes of the
-    point masses on their ropes, linearised at the static state of the geometry of time
-    t (every drive at its position then, at rest; drums with a torque or motor drive
-    held at their starting angle).
+    """(w, hor, vert, phi, mech): frequencies (rad/s), the shares of each mode's kinetic
+    energy (of the point masses and the elastic structure, if any) in the point masses'
+    horizontal and vertical motion, and the mode shapes, linearised at the static state
+    of the geometry of time t (every drive at its position then, at rest; drums with a
+    torque or motor drive held at their starting angle).
 
     The static state: Newton on F(q) = 0 with the engine's analytic tangent K = -dF/dq
     (mechanism.evaluate, damping off), from the reference position moved horizontally
@@ -138,6 +139,8 @@ def crane_modes(model, op, t, newton_tol=1e-10):
     kin = (X.copy(), np.zeros_like(V), np.zeros_like(A), th)
     nx, nf = mech.nx, len(mech.free)
     q = mech.q0.copy()
+    if mech.flex is not None:     # the elastic nodes, which kinematics leaves at 0, where
+        X = mech.place(t, q, np.zeros(mech.n), kin)[0]  # their frames carry them (bent as at 0)
     if nf and mech.sway:
         H = np.eye(3) - np.outer(mech.up, mech.up)
         P = model.coords[mech.free].copy()
@@ -167,20 +170,25 @@ def crane_modes(model, op, t, newton_tol=1e-10):
     w2, phi = sl.eigh(K, 0.5 * (M + M.T))
     u = (mech.E @ phi[:mech.nc]).reshape(nf, 3, nx)        # node displacements per mode
     m = mech.free_mass[:, None, None]
-    vert = np.einsum("i,kim->km", mech.up, u)              # (nf, nx) vertical part
-    total = np.einsum("kim,kim->m", m * u, u)
-    hor = 1.0 - np.einsum("k,km->m", mech.free_mass, vert**2) / total
-    return np.sqrt(np.maximum(w2, 0.0)), hor, phi, mech
+    up = np.einsum("i,kim->km", mech.up, u)                # (nf, nx) vertical part
+    loads = np.einsum("kim,kim->m", m * u, u)              # 2 x the loads' kinetic energy
+    vert = np.einsum("k,km->m", mech.free_mass, up**2)
+    # the elastic structure's own kinetic energy (its coordinates follow the joints'): a
+    # mode that mostly bends the structure is neither a pendulum nor a hoisting mode
+    el = slice(mech.nc + mech.nJ, nx)
+    structure = np.einsum("im,ij,jm->m", phi[el], M[el, el], phi[el])
+    total = loads + structure
+    return np.sqrt(np.maximum(w2, 0.0)), (loads - vert) / total, vert / total, phi, mech
 
 
 def auto_omegas(model, op, drive, t, modes=None, entry=""):
     """The frequencies (rad/s) a shaper with frequency: auto cancels for `drive` starting
     at t (module docstring): pendulum modes for joints, the hoisting mode for drums."""
     from ...errors import ModelError
-    w, hor, _, mech = crane_modes(model, op, t)
+    w, hor, vert, _, mech = crane_modes(model, op, t)
     file = model.scene_file or model.file
     if drive.target == "drum":
-        cand = w[hor < 1 - HORIZONTAL][:1]
+        cand = w[vert > 1 - HORIZONTAL][:1]
         what = "hoisting (vertical) mode"
     else:
         if not mech.sway:
