@@ -13,8 +13,8 @@ in a plane xz each mass has the coordinates x and z, E = blocks of [[1, 0], [0, 
 
 import numpy as np
 import pytest
-from test_mutation_kills_mechanism import (ARM, BRIDGE, TROLLEY, TROLLEY_DRIVE, _count,
-                                           _dir, _scene_mech)
+from test_mutation_kills_mechanism import (ARM, BRIDGE, SLEWING, TROLLEY, TROLLEY_DRIVE,
+                                           _count, _dir, _scene_mech)
 from test_operation_massless import BLOCK
 
 from cranefe.errors import ModelError
@@ -69,10 +69,14 @@ def test_three_masses_hang_from_the_node_most_nearly_above():
 
 
 def test_a_node_on_two_bodies_rides_on_the_deeper_one():
-    """The trolley's rope node K listed on the bridge too: it is carried by the trolley
-    (deeper in the tree: ground - bridge - trolley), so it moves with the trolley's
-    travel, not with the bridge."""
-    text = BRIDGE.replace("nodes: [B]}", "nodes: [B, K]}")
+    """The trolley's rope node K listed on the bridge too (the bridge given after the
+    trolley): it is carried by the trolley (deeper in the tree: ground - bridge -
+    trolley), so it moves with the trolley's travel, not with the bridge."""
+    bridge = "  bridge: {mass: 2000, com: [0, 0, 10], inertia: [10, 10, 10], nodes: [B]}\n"
+    assert bridge in BRIDGE
+    # the trolley listed first, so that the deeper body wins, not the later one
+    text = BRIDGE.replace(bridge, "").replace(
+        "joints:", bridge.replace("nodes: [B]}", "nodes: [B, K]}") + "joints:")
     mech = _scene_mech(text, "  duration: 2\n  drives:\n    t: {slider: travel, profile: "
                              "{type: table, speed: [[0, 0.5], [2, 0.5]]}}\n")
     bridge, trolley = ([b.name for b in mech.model.bodies].index(n)
@@ -160,3 +164,23 @@ def test_a_rope_between_bodies_only_is_inactive():
                             "{type: table, speed: [[0, 0.0]]}}\n")
     assert mech.inactive_ropes == ["stay"]
     assert [mech.model.ropes[k].name for k in mech.ropes] == ["hoist"]
+
+
+def test_a_slewing_coordinate_carries_the_trolley_beyond_its_jib():
+    """The slewing test crane with the jib's centre of mass at 4 m and the trolley (its
+    node K, centre of mass and load) at 12 m: the slewing coordinate's subtree is the jib
+    and the trolley riding on it, so its nodes are T and K, its length scale rho = 12 m
+    (the farthest point from the axis: the trolley's) and its inertia about the axis
+    (I_zz + m r^2 of jib and trolley) / rho^2; the trolley's own profile is prescribed."""
+    text = (SLEWING.replace("com: [10, 0, 30]", "com: [4, 0, 30]")
+            .replace("K: [6, 0, 30]", "K: [12, 0, 30]").replace("H: [6, 0, 20]", "H: [12, 0, 20]")
+            .replace("com: [6, 0, 30]", "com: [12, 0, 30]"))
+    mech = _scene_mech(text, "  duration: 2\n  drives:\n    s: {hinge: slew, torque: 0}\n"
+                             "    t: {slider: travel, profile: {type: table, "
+                             "speed: [[0, 0.0]]}}\n")
+    assert mech.nJ == 1
+    (jc,) = mech.jc
+    assert _names(mech, jc["nodes"]) == ["T", "K"] and jc["rho"] == 12.0 and jc["hinge"]
+    ev = mech.evaluate(0.0, mech.q0, np.zeros(mech.n), mech.taut0)
+    I_ax = 1e5 + 5000 * 16 + 10 + 500 * 144
+    np.testing.assert_allclose(ev.MJ, [[I_ax / 144]], rtol=1e-12)
