@@ -184,3 +184,19 @@ def test_a_slewing_coordinate_carries_the_trolley_beyond_its_jib():
     ev = mech.evaluate(0.0, mech.q0, np.zeros(mech.n), mech.taut0)
     I_ax = 1e5 + 5000 * 16 + 10 + 500 * 144
     np.testing.assert_allclose(ev.MJ, [[I_ax / 144]], rtol=1e-12)
+
+
+def test_massless_blocks_found_through_a_chain():
+    """The massless block B on two falls with a second massless node C on the sling
+    below it (B - C - L): both are found from the load L outwards (C first, then B, one
+    more pass), appended to the point masses with mass 0, and the statics carry m g in
+    both sling parts and m g / 2 in each fall."""
+    text = (BLOCK.replace("  L: [0, 0, 7]\n", "  C: [0, 0, 8.5]\n  L: [0, 0, 7]\n")
+            .replace("  sling: {EA: 5.0e6, path: [B, L]}\n",
+                     "  sling: {EA: 5.0e6, path: [B, C]}\n"
+                     "  sling2: {EA: 5.0e6, path: [C, L]}\n"))
+    mech = _scene_mech(text, "  duration: 1\n")
+    assert _names(mech, mech.free) == ["L", "C", "B"]
+    np.testing.assert_allclose(mech.M, [1000, 1000, 0, 0, 0, 0], atol=0)
+    np.testing.assert_allclose(mech.S0, [1000 * 9.81 / 2, 1000 * 9.81, 1000 * 9.81],
+                               rtol=1e-9)
