@@ -426,7 +426,6 @@ class Mechanism:
                 raise ModelError(f"spring '{s.name}' ends at a massless free node; not "
                                  "supported by operation scenes yet", model.file,
                                  f"springs.{s.name}")
-        self.springs = [k for k, _ in sp]
         self.sp_a = np.array([s.nodes[0] for _, s in sp], dtype=int)
         self.sp_b = np.array([s.nodes[1] for _, s in sp], dtype=int)
         self.sp_k = np.array([s.stiffness for _, s in sp])
