@@ -212,3 +212,78 @@ def test_massless_rope_rows_by_hand_at_the_reference_and_at_other_positions():
     np.testing.assert_allclose(Lm, [28], rtol=1e-15)
     R0, L0 = rope_rows(m, lay, which=[])
     assert R0.shape == (0, lay.size) and L0.shape == (0,)
+
+
+# a rope between two drums over a sheave S: falls D0 -> S (3, 0, 4) and S -> D1
+# (3, 0, -4), 5 m each, three elements per fall; a light rope (0.5 kg/m) with a short
+# extra length (0.5 m), which sits at the START (the first end is a drum)
+TWO_DRUMS = """cranefe: 1
+plane: xz
+nodes: {D0: [0, 0, 0], S: [3, 0, 4], D1: [6, 0, 0]}
+ground: [D0, S, D1]
+drums:
+  d0: {node: D0, radius: 0.5, inertia: 10}
+  d1: {node: D1, radius: 0.25, inertia: 5}
+ropes:
+  r: {EA: 1.0e7, path: [d0, S, d1], mass_per_length: 0.5, extra_length: 0.5}
+effects: {rope_mass: 3, sway: false}
+"""
+
+
+def test_rope_between_two_drums_mesh_and_condensed_stiffness_by_hand():
+    """Nodes D0, S, D1 = 0, 1, 2; interior nodes at thirds of each fall: 3 (1, 0, 4/3),
+    4 (2, 0, 8/3), 5 (4, 0, 8/3), 6 (5, 0, 4/3); slip 0 over S, slip 1 the extra length,
+    which goes to the start (drums at both ends), between drum d0 (xi = -0.5 theta0) and
+    slip 1. The last end is drum d1: xi = +0.25 theta1. Condensed (docs/theory.md
+    section 2): Delta = R0 theta0 + R1 theta1, L = 5 + 5 + 0.5 = 10.5 m,
+    K = EA / L [[R0^2, R0 R1], [R0 R1, R1^2]] on (d0, d1); tolerance as above."""
+    s = assemble(load("d.yaml", TWO_DRUMS))
+    rm = s.dofs.ropes
+    up, down = [0.6, 0, 0.8], [0.6, 0, -0.8]
+    np.testing.assert_allclose(rm.coords, [[1, 0, 4 / 3], [2, 0, 8 / 3], [4, 0, 8 / 3],
+                                           [5, 0, 4 / 3]], atol=1e-14)
+    assert rm.slip_names == ("slip r over S (pass 1)", "slip r (extra length)")
+    assert rm.node.tolist() == [[0, 0], [0, 3], [3, 4], [4, 1], [1, 5], [5, 6], [6, 2]]
+    assert rm.slip.tolist() == [[-1, 1], [1, -1], [-1, -1], [-1, 0], [0, -1], [-1, -1],
+                                [-1, -1]]
+    assert rm.drum.tolist() == [[0, -1]] + [[-1, -1]] * 5 + [[-1, 1]]
+    assert rm.coef.tolist() == [[-0.5, 1], [1, 0], [0, 0], [0, 1], [1, 0], [0, 0],
+                                [0, 0.25]]
+    np.testing.assert_allclose(rm.e, [up] * 4 + [down] * 3, atol=1e-15)
+    np.testing.assert_allclose(rm.length, [0.5] + [5 / 3] * 6, rtol=1e-15)
+    R = np.array([0.5, 0.25])
+    np.testing.assert_allclose(_condensed(s, ["drum d0", "drum d1"]),
+                               1.0e7 / 10.5 * np.outer(R, R), rtol=1e-9, atol=1e-9 * 1e6)
+
+
+def test_a_light_rope_listed_after_a_massless_one_is_meshed():
+    """Ropes are chosen by mass > 0, whatever their order and however light: r2 first
+    (massless, skipped), then r; and r2 at 0.5 kg/m with 0.5 m of extra length (dead ends
+    at both ends: the extra piece goes where its first fall begins, at B)."""
+    first = V_ROPE.replace("  r: {EA: 1.0e8, path: [A, B, S, hoist], mass_per_length: 5, "
+                           "extra_length: 2}\n  r2: {EA: 2.0e7, path: [B, C]}\n",
+                           "  r2: {EA: 2.0e7, path: [B, C]}\n  r: {EA: 1.0e8, path: "
+                           "[A, B, S, hoist], mass_per_length: 5, extra_length: 2}\n")
+    rm = discretize(load("v.yaml", first), 1)
+    assert rm.ropes == (1,) and rm.rope.tolist() == [1, 1, 1, 1]
+    light = V_ROPE.replace("r2: {EA: 2.0e7, path: [B, C]}",
+                           "r2: {EA: 2.0e7, path: [B, C], mass_per_length: 0.5, "
+                           "extra_length: 0.5}")
+    rm = discretize(load("v.yaml", light), 1)
+    assert rm.ropes == (0, 1)
+    assert rm.node[4:].tolist() == [[1, 1], [1, 4]]
+    assert rm.slip[4:].tolist() == [[-1, 3], [3, -1]]
+    assert rm.fall[4:].tolist() == [-1, 0]
+    np.testing.assert_allclose(rm.length[4:], [0.5, 4.0], rtol=1e-15)
+
+
+def test_no_rope_with_mass_leaves_the_massless_rope():
+    """rope_mass: 1 with no rope carrying mass: an empty mesh, and K is the massless
+    rope's (r = (0, -1.6, 0.5), c = 1e8 / 20) plus r2 (2e7 / 4 on B z), exactly."""
+    s = assemble(load("v.yaml", V_ROPE.replace("mass_per_length: 5, ", "")))
+    rm = s.dofs.ropes
+    assert rm.ropes == () and rm.node.shape == (0, 2) and rm.e.shape == (0, 3)
+    assert s.dofs.labels == ("node B x", "node B z", "drum hoist")
+    r = np.array([0.0, -1.6, 0.5])
+    np.testing.assert_allclose(s.K.toarray(), 5.0e6 * np.outer(r, r)
+                               + np.diag([0.0, 5.0e6, 0.0]), rtol=1e-12, atol=1e-3)
