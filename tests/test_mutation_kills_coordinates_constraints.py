@@ -56,6 +56,88 @@ def test_planar_hinge_keeps_the_angle_and_swings_at_the_compound_pendulum_freque
     np.testing.assert_allclose(modes(m).omega ** 2, [100 * G * 4 / 1602], rtol=1e-12)
 
 
+def test_a_long_pendulum_still_keeps_its_angle():
+    """Rotations are weighed in length units (theta x model size) before the pivoting,
+    so a 20 m pendulum (|c| = 20 m, model size 20 m) keeps its angle too, as a 4 m one:
+    T_c = [-20, 0, 1] on (ux, uz, ry), with ry the coordinate (unscaled, the rotation's
+    column of norm 20 would outweigh the translations' 10 and become the slave)."""
+    d = build_dofs(load("l.yaml", PENDULUM.replace("O: [0, 0, 10], C: [0, 0, 6]",
+                                                   "O: [0, 0, 20], C: [0, 0, 0]")))
+    assert d.labels == ("body bob ry",)
+    np.testing.assert_allclose(d.T_c.toarray(), [[-20.0], [0.0], [1.0]], atol=1e-13)
+
+
+def test_joints_after_a_fixed_joint_and_after_a_joint_inside_a_group_still_count():
+    """A cap fixed to the bob (listed first), a hinge between bob and cap (one rigid
+    group: nothing to constrain), then the hinge to ground: the group bob+cap (reference
+    the mass centre (100 (0, 0, 6) + 100 (0, 0, 8)) / 200 = (0, 0, 7), 3 m below O) is a
+    pendulum: T_c = [-3, 0, 1]."""
+    text = PENDULUM.replace("nodes: {O: [0, 0, 10], C: [0, 0, 6]}",
+                            "nodes: {O: [0, 0, 10], C: [0, 0, 6], E: [0, 0, 8]}").replace(
+        "bodies: {bob: {mass: 100, com: C, inertia: 2, nodes: [O, C]}}",
+        "bodies:\n  bob: {mass: 100, com: C, inertia: 2, nodes: [O, C]}\n"
+        "  cap: {mass: 100, com: E, inertia: 1, nodes: [E]}").replace(
+        "joints:\n", "joints:\n  - {type: fixed, bodies: [bob, cap], at: C}\n"
+        "  - {type: hinge, bodies: [bob, cap], at: E}\n")
+    d = build_dofs(load("c.yaml", text))
+    assert d.labels == ("body bob+cap ry",)
+    assert [c.name for c in d.constraints] == ["hinge joint at O"]
+    np.testing.assert_allclose(d.T_c.toarray(), [[-3.0], [0.0], [1.0]], atol=1e-14)
+
+
+def test_double_pendulum_hinges_between_two_bodies():
+    """3D: a hinged to ground at O (0, 0, 10) about y, b hinged to a at P (0, 0, 6) about
+    y; centres of mass A (0, 0, 8), B (0, 0, 4). With the two angles as coordinates:
+    u_A = ta y x (A - O) = (-2 ta, 0, 0), u_B = ta y x (P - O) + tb y x (B - P) =
+    (-4 ta - 2 tb, 0, 0), the rotations (0, ta, 0) and (0, tb, 0). The hinge a-b's rows
+    use both groups' rotations (a ball there would leave b three rotations)."""
+    d = build_dofs(load("dp.yaml", """cranefe: 1
+nodes: {O: [0, 0, 10], A: [0, 0, 8], P: [0, 0, 6], B: [0, 0, 4]}
+ground: [O]
+bodies:
+  a: {mass: 10, com: A, inertia: [1, 1, 1], nodes: [A]}
+  b: {mass: 10, com: B, inertia: [1, 1, 1], nodes: [B]}
+joints:
+  - {type: hinge, bodies: [ground, a], at: O, axis: [0, 1, 0]}
+  - {type: hinge, bodies: [a, b], at: P, axis: [0, 1, 0]}
+"""))
+    assert d.labels == ("body a ry", "body b ry")
+    want = np.zeros((12, 2))
+    want[[0, 4], 0] = [-2, 1]
+    want[6, 0] = -4
+    want[[6, 10], 1] = [-2, 1]
+    np.testing.assert_allclose(d.T_c.toarray(), want, atol=1e-13)
+    assert [c.groups for c in d.constraints] == [(-1, 0), (0, 1)]
+
+
+def test_hinge_on_a_body_hung_on_a_ball_turns_relative_to_it():
+    """a hangs on a ball at O, b on a hinge about y at P on a: four coordinates, spanning
+    a's three rotations t_a (b follows rigidly: u = t_a x (p - O) for every point) and
+    b's turn about y relative to a (u_B = y x (B - P), t_b = y). The hinge's rotation rows
+    are those of t_b - t_a (with t_b + t_a, b would follow a's turns mirrored). The
+    space is compared (rank of [T_c, hand basis] = 4 to 1e-9 of the entries), not the
+    pivoting's choice of the four rotations kept."""
+    O, A, P, B = (np.array(v, float) for v in ([0, 0, 10], [1, 0, 8], [0, 0, 6], [1, 1, 4]))
+    d = build_dofs(load("bh.yaml", """cranefe: 1
+nodes: {O: [0, 0, 10], A: [1, 0, 8], P: [0, 0, 6], B: [1, 1, 4]}
+ground: [O]
+bodies:
+  a: {mass: 10, com: A, inertia: [1, 1, 1], nodes: [A]}
+  b: {mass: 10, com: B, inertia: [1, 1, 1], nodes: [B]}
+joints:
+  - {type: ball, bodies: [ground, a], at: O}
+  - {type: hinge, bodies: [a, b], at: P, axis: [0, 1, 0]}
+"""))
+    H = np.zeros((12, 4))
+    for k, t in enumerate(np.eye(3)):
+        H[:, k] = np.concatenate([np.cross(t, A - O), t, np.cross(t, B - O), t])
+    y = np.array([0.0, 1.0, 0.0])
+    H[6:, 3] = np.concatenate([np.cross(y, B - P), y])
+    T = d.T_c.toarray()
+    assert T.shape == (12, 4)
+    assert np.linalg.matrix_rank(np.hstack([T, H]), tol=1e-9 * abs(H).max()) == 4
+
+
 def test_ball_joint_leaves_the_three_rotations():
     """3D ball at O: c = C - O = (1, 2, -4), u_C = t x c = (-4 ty - 2 tz, 4 tx + tz,
     2 tx - ty), the rotations t the coordinates (exact integers)."""
@@ -199,7 +281,7 @@ def test_inextensible_rope_ties_the_hook_to_the_drum():
 
 def test_inextensible_ropes_refuse_rope_mass():
     text = INEXTENSIBLE.replace("EA: 1.0e8,", "EA: 1.0e8, mass_per_length: 5,").replace(
-        "rope_elasticity: false", "rope_elasticity: false, rope_mass: 2")
+        "rope_elasticity: false", "rope_elasticity: false, rope_mass: 1")
     with pytest.raises(ModelError) as err:
         build_dofs(load("i.yaml", text))
     e = err.value
@@ -281,6 +363,11 @@ springs:
         "{fix: [uz], axes: [[0.6, 0, 0.8], [0, 1, 0], [-0.8, 0, 0.6]]}", "[uy]")))
     assert len(d.constraints) == 1 and d.labels == ("node N x", "node N z")
     np.testing.assert_array_equal(d.T_c.toarray(), np.eye(2))
+    # a support along x on N (x, z): one column in G, eliminated
+    d = build_dofs(load("r.yaml", ROLLER.replace(
+        "{fix: [uz], axes: [[0.6, 0, 0.8], [0, 1, 0], [-0.8, 0, 0.6]]}", "[ux]")))
+    assert d.labels == ("node N z",)
+    np.testing.assert_array_equal(d.T_c.toarray(), [[0], [1]])
     T, keep = _eliminate([], 4, np.zeros(4, bool), 1.0)
     np.testing.assert_array_equal(T.toarray(), np.eye(4))
     np.testing.assert_array_equal(keep, np.arange(4))
