@@ -16,21 +16,27 @@ from cranefe.model import load
 
 GROUPS = """cranefe: 1
 plane: xz
-nodes: {O: [0, 0, 10], A: [0, 0, 0], B: [4, 0, 0], P: [2, 0, 2], J: [6, 0, 0],
-        Q: [6, 0, -2], R: [8, 0, -2], K: [0, 0, 12], H: [-2, 0, 4]}
+nodes: {O: [0, 0, 10], A: [0, 0, 4], B: [4, 0, 0], P: [2, 0, 2], J: [6, 0, 0],
+        Q: [6, 0, -2], R: [8, 0, -2], K: [0, 0, 12], H: [-2, 0, 4], S: [10, 0, -2],
+        V: [12, 0, 0], L1: [0, 0, -6], L2: [2, 0, -6]}
 ground: [O]
 bodies:
   d: {mass: 50, com: K, inertia: 5, nodes: [K]}
   a: {mass: 100, com: A, inertia: 10, nodes: [A, P, H]}
   b: {mass: 300, com: B, inertia: 30, nodes: [B]}
   c: {mass: 0, nodes: [Q, R]}
+  c2: {mass: 0, nodes: [S]}
   e: {mass: 20, com: [1, 0, 12], inertia: 2, nodes: [H]}
+  g: {mass: 0.5, com: [0.5, 0, -6], inertia: 0.1, nodes: [L1, L2]}
+  f: {mass: 0}
 joints:
   - {type: fixed, bodies: [e, d], at: K}
-  - {type: fixed, bodies: [d, ground], at: O}
+  - {type: fixed, bodies: [ground, d], at: O}
   - {type: fixed, bodies: [b, a], at: B}
+  - {type: fixed, bodies: [c, c2], at: S}
   - {type: hinge, bodies: [b, c], at: J}
   - {type: hinge, bodies: [a, e], at: H}
+  - {type: hinge, bodies: [ground, c], at: V}
 """
 
 
@@ -49,52 +55,64 @@ def _rows(points, ref, cols, planar=True):
 
 
 def test_rigid_groups_their_references_and_what_they_carry():
-    """Fixed joints merge a+b (one group, reference the mass centre (100 A + 300 B) / 400
-    = (3, 0, 0)) and d+e+ground (grounded: d is fixed to ground after e was fixed to d, so
-    the ground stays the root); c is massless: its reference is its nodes' centroid
-    (7, 0, -2). Carriers: P, A, B by a+b; J (the hinge b-c's node, listed by no body) by
-    b, its first body; Q, R by c; K and H by the ground (H is listed by a and by the
-    grounded e). Rows of T_map: u_p = u_g + t x (p - x_g), the bodies' centres of mass
-    likewise and their rotation the group's."""
+    """Fixed joints merge a+b (reference the mass centre (100 A + 300 B) / 400 =
+    (3, 0, 1)), c+c2 (massless: the centroid of their nodes Q, R, S, (8, 0, -2)) and
+    d+e+ground (grounded: d is fixed to ground, listed first in its joint, after e was
+    fixed to d, so the ground stays the root); g alone (0.5 kg: its centre of mass
+    (0.5, 0, -6), not its nodes' centroid (1, 0, -6)); f alone (massless, no nodes: its
+    default centre, the origin). Carriers: P, A, B by a+b; J (the hinge b-c's node, listed
+    by no body) by b, its first body; V (hinge ground-c, listed by no body) by the ground;
+    Q, R, S by c+c2; K and H by the ground (H is listed by a and by the grounded e).
+    Rows of T_map: u_p = u_g + t x (p - x_g), the bodies' centres of mass likewise and
+    their rotation the group's."""
     m = load("g.yaml", GROUPS)
     d = build_dofs(m)
-    assert d.group_of_body.tolist() == [-1, 0, 0, 1, -1]
-    np.testing.assert_allclose(d.group_ref, [[3, 0, 0], [7, 0, -2]], atol=1e-15)
-    assert d.group_q.tolist() == [[0, -1, 1, -1, 2, -1], [3, -1, 4, -1, 5, -1]]
+    assert d.group_of_body.tolist() == [-1, 0, 0, 1, 1, -1, 2, 3]
+    refs = [[3, 0, 1], [8, 0, -2], [0.5, 0, -6], [0, 0, 0]]
+    np.testing.assert_allclose(d.group_ref, refs, atol=1e-15)
+    assert d.group_q.tolist() == [[3 * g, -1, 3 * g + 1, -1, 3 * g + 2, -1]
+                                  for g in range(4)]
     idx = {n: i for i, n in enumerate(m.node_names)}
-    assert {n: d.carrier[i] for n, i in idx.items()} == {
-        "O": -1, "A": 0, "B": 0, "P": 0, "J": 0, "Q": 1, "R": 1, "K": -1, "H": -1}
+    carriers = {"O": -1, "A": 0, "B": 0, "P": 0, "J": 0, "Q": 1, "R": 1, "K": -1,
+                "H": -1, "S": 1, "V": -1, "L1": 2, "L2": 2}
+    assert {n: d.carrier[i] for n, i in idx.items()} == carriers
     T = d.T_map.toarray()
-    assert T.shape == (d.layout.size, 6)
+    assert T.shape == (d.layout.size, 12)
     lay = d.layout
-    ab, c = [0, 1, 2], [3, 4, 5]
-    for name, cols, ref in (("A", ab, [3, 0, 0]), ("B", ab, [3, 0, 0]),
-                            ("P", ab, [3, 0, 0]), ("J", ab, [3, 0, 0]),
-                            ("Q", c, [7, 0, -2]), ("R", c, [7, 0, -2])):
-        (want,) = _rows([m.coords[idx[name]]], np.array(ref, float), cols)
-        np.testing.assert_allclose(T[lay.node(idx[name])][:, cols], want, atol=1e-14)
-        np.testing.assert_allclose(np.delete(T[lay.node(idx[name])], cols, axis=1), 0)
-    for name in ("O", "K", "H"):
-        assert not T[lay.node(idx[name])].any()
-    for b, cols, com, ref in ((1, ab, [0, 0, 0], [3, 0, 0]), (2, ab, [4, 0, 0], [3, 0, 0]),
-                              (3, c, [7, 0, -2], [7, 0, -2])):
-        (want,) = _rows([com], np.array(ref, float), cols)
+    for name, g in carriers.items():
+        rows = T[lay.node(idx[name])]
+        if g < 0:
+            assert not rows.any()
+            continue
+        cols = [3 * g, 3 * g + 1, 3 * g + 2]
+        (want,) = _rows([m.coords[idx[name]]], np.array(refs[g], float), cols)
+        np.testing.assert_allclose(rows[:, cols], want, atol=1e-14)
+        np.testing.assert_allclose(np.delete(rows, cols, axis=1), 0)
+    coms = {1: [0, 0, 4], 2: [4, 0, 0], 3: [7, 0, -2], 4: [10, 0, -2], 6: [0.5, 0, -6],
+            7: [0, 0, 0]}
+    for b, com in coms.items():
+        g = d.group_of_body[b]
+        cols = [3 * g, 3 * g + 1, 3 * g + 2]
+        (want,) = _rows([com], np.array(refs[g], float), cols)
         np.testing.assert_allclose(T[lay.body(b)[:3]][:, cols], want, atol=1e-14)
         np.testing.assert_allclose(T[lay.body(b)[3:]][:, cols], [[0, 0, 0], [0, 0, 1],
                                                                  [0, 0, 0]], atol=0)
-    for b in (0, 4):                            # grounded bodies do not move
+    for b in (0, 5):                            # grounded bodies do not move
         assert not T[lay.body(b)].any()
     assert d.kinds == ("body",) * d.n and d.n == d.T.shape[1] == len(d.labels)
-    assert all(lab.startswith(("body a+b ", "body c ")) for lab in d.labels)
+    assert d.labels == ("body g ux", "body g uz", "body g ry", "body f ux", "body f uz",
+                        "body f ry")
     np.testing.assert_allclose((d.T_map @ d.T_c).toarray(), d.T.toarray())
 
 
 FREE = """cranefe: 1
 nodes: {X1: [5, 0, 0], Z1: [0, 0, 5], N1: [0, 0, 0], N2: [10, 0, 0], W: [13, 0, -4],
-        N3: [20, 0, 0], X3: [21, 0, 0], Y3: [20, 1, 0], Z3: [20, 0, 1], N4: [30, 0, 0],
-        N5: [40, 0, 0]}
-ground: [X1, Z1, W, X3, Y3, Z3]
-masses: {N1: 1, N2: 2, N3: 3, N4: 4}
+        N3: [20, 0, 0], X3: [21, 0, 0], Y3: [20, 1, 0], Z3: [20.6, 0, 0.8], N4: [30, 0, 0],
+        N5: [40, 0, 0], N6: [50, 0, 0], X6: [51, 0, 0],
+        N7: [60, 0, 0], G7: [60.8, 0, 0.6], N8: [70, 0, 0], G8: [70, 0.6, 0.8],
+        N9: [80, 0, 0], G9: [80.6, 0.8, 0], N10: [90, 0, 0], G10: [89.2, 0, 0.6]}
+ground: [X1, Z1, W, X3, Y3, Z3, X6, G7, G8, G9, G10]
+masses: {N1: 1, N2: 2, N3: 3, N4: 4, N7: 1, N8: 1, N9: 1, N10: 1}
 ropes:
   r1: {EA: 1.0e6, path: [X1, N1]}
   r2: {EA: 1.0e6, path: [Z1, N1]}
@@ -102,6 +120,11 @@ ropes:
   r4: {EA: 1.0e6, path: [X3, N3]}
   r5: {EA: 1.0e6, path: [Y3, N3]}
   r6: {EA: 1.0e6, path: [Z3, N3]}
+  r7: {EA: 1.0e6, path: [X6, N6]}
+  r8: {EA: 1.0e6, path: [G7, N7]}
+  r9: {EA: 1.0e6, path: [G8, N8]}
+  r10: {EA: 1.0e6, path: [G9, N9]}
+  r11: {EA: 1.0e6, path: [G10, N10]}
 effects: {sway: false}
 """
 
@@ -109,29 +132,58 @@ effects: {sway: false}
 def test_free_nodes_keep_the_directions_their_ropes_act_in():
     """Sway off (theory.md section 1, "Free nodes"): N1 between ropes along x and z keeps
     x and z; N2 on one rope along (0.6, 0, -0.8) keeps that direction, signed so its
-    largest component is positive: (-0.6, 0, 0.8); N3 with ropes along x, y and z is free
-    in every direction: the global axes; N4 (a mass nothing acts on) and N5 (nothing)
-    get none. Sway on: every active node (N1..N4) moves in x, y, z."""
+    largest component is positive: (-0.6, 0, 0.8) (likewise N7..N10 along (0.8, 0, 0.6),
+    (0, 0.6, 0.8), (0.6, 0.8, 0), (0.8, 0, -0.6), zeros printed as 0); N3 with ropes along
+    x, y and (0.6, 0, 0.8) is free in every direction: the global axes; N6, massless on
+    one rope along x, keeps x; N4 (a mass nothing acts on) and N5 (nothing) get none.
+    Sway on: every active node (all but N5) moves in x, y, z."""
     m = load("f.yaml", FREE)
     d = build_dofs(m)
     idx = {n: i for i, n in enumerate(m.node_names)}
-    assert sorted(d.labels) == sorted(["node N1 x", "node N1 z", "node N3 x", "node N3 y",
-                                       "node N3 z", "node N2 along (-0.6, 0, 0.8)"])
+    cases = (("node N1 x", "N1", [1, 0, 0]), ("node N1 z", "N1", [0, 0, 1]),
+             ("node N3 x", "N3", [1, 0, 0]), ("node N3 y", "N3", [0, 1, 0]),
+             ("node N3 z", "N3", [0, 0, 1]), ("node N6 x", "N6", [1, 0, 0]),
+             ("node N2 along (-0.6, 0, 0.8)", "N2", [-0.6, 0, 0.8]),
+             ("node N7 along (0.8, 0, 0.6)", "N7", [0.8, 0, 0.6]),
+             ("node N8 along (0, 0.6, 0.8)", "N8", [0, 0.6, 0.8]),
+             ("node N9 along (0.6, 0.8, 0)", "N9", [0.6, 0.8, 0]),
+             ("node N10 along (0.8, 0, -0.6)", "N10", [0.8, 0, -0.6]))
+    assert sorted(d.labels) == sorted(c[0] for c in cases)
     T = d.T.toarray()
     col = {lab: T[:, k] for k, lab in enumerate(d.labels)}
     lay = d.layout
-    for lab, node, vec in (("node N1 x", "N1", [1, 0, 0]), ("node N1 z", "N1", [0, 0, 1]),
-                           ("node N3 x", "N3", [1, 0, 0]), ("node N3 y", "N3", [0, 1, 0]),
-                           ("node N3 z", "N3", [0, 0, 1]),
-                           ("node N2 along (-0.6, 0, 0.8)", "N2", [-0.6, 0, 0.8])):
+    for lab, node, vec in cases:
         want = np.zeros(lay.size)
         want[lay.node(idx[node])] = vec
-        np.testing.assert_allclose(col[lab], want, atol=1e-15)
-    assert d.kinds == ("node",) * 6
-    assert (d.carrier == -2).sum() == 5
+        np.testing.assert_allclose(col[lab], want, atol=1e-14)
+    assert d.kinds == ("node",) * len(cases)
     d = build_dofs(m, m.effects.__class__(**{**vars(m.effects), "sway": True}))
-    assert sorted(d.labels) == sorted(f"node N{i} {a}" for i in (1, 2, 3, 4) for a in "xyz")
+    assert sorted(d.labels) == sorted(f"node N{i} {a}" for i in (1, 2, 3, 4, 6, 7, 8, 9, 10)
+                                      for a in "xyz")
     np.testing.assert_allclose(abs(d.T.toarray()).sum(axis=0), 1)
+
+
+def test_a_planar_node_between_two_ropes_uses_the_axes():
+    """Planar, sway off: B on a rope to A along (-0.6, 0, 0.8) and one up to T: D is
+    full in the plane (not diagonal), so B moves in x and z, the global axes; a drum on
+    a free node N that nothing else acts on makes it active: with sway on it gets x, z."""
+    text = """cranefe: 1
+plane: xz
+nodes: {A: [0, 0, 8], B: [6, 0, 0], T: [6, 0, 10], N: [9, 0, 0]}
+ground: [A, T]
+masses: {B: 10}
+drums: {d: {node: N, radius: 0.5, inertia: 1}}
+ropes:
+  r1: {EA: 1.0e6, path: [A, B]}
+  r2: {EA: 1.0e6, path: [B, T]}
+effects: {sway: false, drive: held}
+"""
+    m = load("v.yaml", text)
+    d = build_dofs(m)
+    assert d.labels == ("node B x", "node B z")
+    np.testing.assert_array_equal(d.T.toarray()[d.layout.node(1)], [[1, 0], [0, 0], [0, 1]])
+    d = build_dofs(m, m.effects.__class__(**{**vars(m.effects), "sway": True}))
+    assert d.labels == ("node B x", "node B z", "node N x", "node N z")
 
 
 def test_direction_tensor_sums_the_spans_springs_drives_and_members():
@@ -270,3 +322,37 @@ def test_entry_of_names_the_model_entry():
     assert entry_of("body a+b ux") == "bodies.a"
     assert entry_of("drum hoist") == "drums.hoist"
     assert entry_of("slip r over S (pass 1)") is None
+
+
+def test_rope_mass_zero_meshes_nothing_and_a_rigid_structure_no_members():
+    """rope_mass: 0 leaves a rope with mass a massless spring (no slips, no mesh); a
+    rigid structure ignores the members' elements (only body k moves)."""
+    from tests.test_mutation_kills_coordinates_ropes import V_ROPE
+    d = build_dofs(load("v.yaml", V_ROPE.replace("rope_mass: 1", "rope_mass: 0")))
+    assert d.labels == ("node B x", "node B z", "drum hoist") and d.ropes is None
+    m = load("b.yaml", BEAMS)
+    d = build_dofs(m, m.effects.__class__(**{**vars(m.effects), "structure": "rigid"}))
+    assert d.labels == ("body k ux", "body k uz", "body k ry") and d.members is None
+
+
+def test_rope_elements_and_member_elements_together():
+    """Rope mass and flexible members in one model: nodes A, B, S, then the rope's
+    interior node (2, 0, 2.5) (index 3, along the fall: z only, sway off), then the
+    beam's interior node (1, 0, 0) (index 4: x, z, ry). Nodes free in every direction
+    are listed first, then the others, then the rotations."""
+    d = build_dofs(load("rb.yaml", """cranefe: 1
+plane: xz
+nodes: {A: [0, 0, 0], B: [2, 0, 0], S: [2, 0, 5]}
+ground: [A, S]
+masses: {B: 10}
+ropes:
+  r: {EA: 1.0e6, path: [S, B], mass_per_length: 1}
+members:
+  bm: {type: beam, nodes: [A, B], E: 2.0e11, A: 1.0e-3, Iy: 1.0e-6, elements: 2}
+effects: {rope_mass: 2, structure: flexible, sway: false}
+"""))
+    assert d.layout.n_nodes == 5
+    np.testing.assert_allclose(d.coords[3:], [[2, 0, 2.5], [1, 0, 0]], atol=1e-15)
+    assert d.members.node.tolist() == [[0, 4], [4, 1]]
+    assert d.labels == ("node B x", "node B z", "node bm A-B 1 x", "node bm A-B 1 z",
+                        "node rope r fall 1 node 1 z", "node B ry", "node bm A-B 1 ry")
