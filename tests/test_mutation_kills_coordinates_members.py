@@ -13,37 +13,51 @@ from cranefe.model import load
 from cranefe.system import assemble
 
 SPATIAL = """cranefe: 1
-nodes: {A: [0, 0, 0], B: [3, 0, 4], C: [3, 0, 0], E: [0, 2, 0]}
+nodes: {A: [0, 0, 0], B: [3, 0, 4], C: [3, 0, 0], E: [0, 2, 0], F: [0, 4, 0]}
 ground: [A]
 members:
   t: {type: truss, pairs: [[A, C], [C, E]], E: 2.0e11, A: 1.0e-3}
   bm: {type: beam, nodes: [A, B, C], E: 2.0e11, A: 1.0e-3, Iy: 1.0e-6, Iz: 1.0e-6,
        J: 1.0e-6, G: 8.0e10, orientation: [0, 1, 0], elements: 3,
-       releases: {C: [rx, ry, rz], A: [ry]}}
+       releases: {C: [rx, ry, rz], A: [rx, rz]}}
+  bm2: {type: beam, nodes: [C, E, F], E: 2.0e11, A: 1.0e-3, Iy: 1.0e-6, Iz: 1.0e-6,
+        J: 1.0e-6, G: 8.0e10, orientation: [0, 0, 1], elements: 2,
+        releases: {C: [ry, rz], F: [rx, ry, rz]}}
+  bm3: {type: beam, nodes: [E, B], E: 2.0e11, A: 1.0e-3, Iy: 1.0e-6, Iz: 1.0e-6,
+        J: 1.0e-6, G: 8.0e10, orientation: [0, 0, 1], elements: 2}
 effects: {structure: flexible}
 """
 
 
 def test_spatial_mesh_by_hand():
-    """Nodes A, B, C, E = 0..3. The truss (pairs A-C, C-E): one element per pair, no
+    """Nodes A, B, C, E, F = 0..4. The truss (pairs A-C, C-E): one element per pair, no
     orientation. The beam A-B-C in 3 elements per piece: interior nodes at thirds,
     numbered from first_node = 10: A-B (5 m along (0.6, 0, 0.8)) 10 (1, 0, 4/3),
-    11 (2, 0, 8/3); B-C (4 m down) 12 (3, 0, 8/3), 13 (3, 0, 4/3). Its orientation is the
-    given one on every element. Releases: every rotation at C pins the last element's
-    end; ry alone at A pins nothing in 3D."""
+    11 (2, 0, 8/3); B-C (4 m down) 12 (3, 0, 8/3), 13 (3, 0, 4/3); then bm2 C-E-F in 2
+    elements per piece: 14 (1.5, 1, 0), 15 (0, 3, 0); then bm3 E-B: 16 (1.5, 1, 2)
+    (the third subdivided member: its numbers continue the count). Each beam's orientation is its own
+    on every element. Releases: every rotation at C (bm) and at F (bm2) pins that end;
+    rx, rz (bm at A) or ry, rz (bm2 at C) pin nothing in 3D."""
     m = load("s.yaml", SPATIAL)
     mm = discretize(m, 10)
     np.testing.assert_allclose(mm.coords, [[1, 0, 4 / 3], [2, 0, 8 / 3], [3, 0, 8 / 3],
-                                           [3, 0, 4 / 3]], atol=1e-14)
-    assert mm.n_interior == 4
-    assert mm.names == ("bm A-B 1", "bm A-B 2", "bm B-C 1", "bm B-C 2")
-    assert mm.member.tolist() == [0, 0] + [1] * 6
-    assert mm.beam.tolist() == [False, False] + [True] * 6
+                                           [3, 0, 4 / 3], [1.5, 1, 0], [0, 3, 0],
+                                           [1.5, 1, 2]],
+                               atol=1e-14)
+    assert mm.n_interior == 7
+    assert mm.names == ("bm A-B 1", "bm A-B 2", "bm B-C 1", "bm B-C 2", "bm2 C-E 1",
+                        "bm2 E-F 1", "bm3 E-B 1")
+    assert mm.member.tolist() == [0, 0] + [1] * 6 + [2] * 4 + [3] * 2
+    assert mm.beam.tolist() == [False, False] + [True] * 12
     assert mm.node.tolist() == [[0, 2], [2, 3], [0, 10], [10, 11], [11, 1], [1, 12],
-                                [12, 13], [13, 2]]
-    np.testing.assert_array_equal(mm.orientation, [[0, 0, 0]] * 2 + [[0, 1, 0]] * 6)
-    assert mm.pinned.tolist() == [[False, False]] * 7 + [[False, True]]
-    assert mm.rotation_nodes().tolist() == [0, 1, 10, 11, 12, 13]
+                                [12, 13], [13, 2], [2, 14], [14, 3], [3, 15], [15, 4],
+                                [3, 16], [16, 1]]
+    np.testing.assert_array_equal(mm.orientation,
+                                  [[0, 0, 0]] * 2 + [[0, 1, 0]] * 6 + [[0, 0, 1]] * 6)
+    assert mm.pinned.tolist() == ([[False, False]] * 7 + [[False, True]]
+                                  + [[False, False]] * 3 + [[False, True]]
+                                  + [[False, False]] * 2)
+    assert mm.rotation_nodes().tolist() == [0, 1, 2, 3, 10, 11, 12, 13, 14, 15, 16]
     assert mm.node.dtype.kind == mm.member.dtype.kind == "i" and mm.beam.dtype == bool
     assert member_pairs(m.members[0]).tolist() == [[0, 2], [2, 3]]
     assert member_pairs(m.members[1]).tolist() == [[0, 1], [1, 2]]
