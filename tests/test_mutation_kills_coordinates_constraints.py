@@ -279,6 +279,17 @@ def test_inextensible_rope_ties_the_hook_to_the_drum():
                                atol=1e-6)
 
 
+def test_a_large_drum_still_keeps_its_rotation():
+    """One fall from S to B on a drum of radius 1.5 m: u_Bz = 1.5 theta; the drum's
+    rotation is weighed as a rotation (in model lengths), so it stays the coordinate
+    although its column (1.5) outweighs the hook's (1) unweighted."""
+    text = INEXTENSIBLE.replace("radius: 0.5", "radius: 1.5").replace(
+        "{node: B, falls: 2}", "B")
+    d = build_dofs(load("i.yaml", text))
+    assert d.labels == ("node B x", "drum hoist")
+    np.testing.assert_allclose(d.T_c.toarray(), [[1, 0], [0, 1.5], [0, 1]], atol=1e-15)
+
+
 def test_inextensible_ropes_refuse_rope_mass():
     text = INEXTENSIBLE.replace("EA: 1.0e8,", "EA: 1.0e8, mass_per_length: 5,").replace(
         "rope_elasticity: false", "rope_elasticity: false, rope_mass: 1")

@@ -110,9 +110,10 @@ nodes: {X1: [5, 0, 0], Z1: [0, 0, 5], N1: [0, 0, 0], N2: [10, 0, 0], W: [13, 0, 
         N3: [20, 0, 0], X3: [21, 0, 0], Y3: [20, 1, 0], Z3: [20.6, 0, 0.8], N4: [30, 0, 0],
         N5: [40, 0, 0], N6: [50, 0, 0], X6: [51, 0, 0],
         N7: [60, 0, 0], G7: [60.8, 0, 0.6], N8: [70, 0, 0], G8: [70, 0.6, 0.8],
-        N9: [80, 0, 0], G9: [80.6, 0.8, 0], N10: [90, 0, 0], G10: [89.2, 0, 0.6]}
-ground: [X1, Z1, W, X3, Y3, Z3, X6, G7, G8, G9, G10]
-masses: {N1: 1, N2: 2, N3: 3, N4: 4, N7: 1, N8: 1, N9: 1, N10: 1}
+        N9: [80, 0, 0], G9: [80.6, 0.8, 0], N10: [90, 0, 0], G10: [89.2, 0, 0.6],
+        N11: [100, 0, 0], G11: [100.6, 0, 0.8], N12: [110, 0, 0], G12: [110.8, 0.6, 0]}
+ground: [X1, Z1, W, X3, Y3, Z3, X6, G7, G8, G9, G10, G11, G12]
+masses: {N1: 1, N2: 2, N3: 3, N4: 4, N7: 1, N8: 1, N9: 1, N10: 1, N11: 1, N12: 1}
 ropes:
   r1: {EA: 1.0e6, path: [X1, N1]}
   r2: {EA: 1.0e6, path: [Z1, N1]}
@@ -125,6 +126,8 @@ ropes:
   r9: {EA: 1.0e6, path: [G8, N8]}
   r10: {EA: 1.0e6, path: [G9, N9]}
   r11: {EA: 1.0e6, path: [G10, N10]}
+  r12: {EA: 1.0e6, path: [G11, N11]}
+  r13: {EA: 1.0e6, path: [G12, N12]}
 effects: {sway: false}
 """
 
@@ -132,8 +135,9 @@ effects: {sway: false}
 def test_free_nodes_keep_the_directions_their_ropes_act_in():
     """Sway off (theory.md section 1, "Free nodes"): N1 between ropes along x and z keeps
     x and z; N2 on one rope along (0.6, 0, -0.8) keeps that direction, signed so its
-    largest component is positive: (-0.6, 0, 0.8) (likewise N7..N10 along (0.8, 0, 0.6),
-    (0, 0.6, 0.8), (0.6, 0.8, 0), (0.8, 0, -0.6), zeros printed as 0); N3 with ropes along
+    largest component is positive: (-0.6, 0, 0.8) (likewise N7..N12 along (0.8, 0, 0.6),
+    (0, 0.6, 0.8), (0.6, 0.8, 0), (0.8, 0, -0.6), (0.6, 0, 0.8), (0.8, 0.6, 0), a zero
+    printed as 0 also where the eigenvector came with the other sign); N3 with ropes along
     x, y and (0.6, 0, 0.8) is free in every direction: the global axes; N6, massless on
     one rope along x, keeps x; N4 (a mass nothing acts on) and N5 (nothing) get none.
     Sway on: every active node (all but N5) moves in x, y, z."""
@@ -147,7 +151,9 @@ def test_free_nodes_keep_the_directions_their_ropes_act_in():
              ("node N7 along (0.8, 0, 0.6)", "N7", [0.8, 0, 0.6]),
              ("node N8 along (0, 0.6, 0.8)", "N8", [0, 0.6, 0.8]),
              ("node N9 along (0.6, 0.8, 0)", "N9", [0.6, 0.8, 0]),
-             ("node N10 along (0.8, 0, -0.6)", "N10", [0.8, 0, -0.6]))
+             ("node N10 along (0.8, 0, -0.6)", "N10", [0.8, 0, -0.6]),
+             ("node N11 along (0.6, 0, 0.8)", "N11", [0.6, 0, 0.8]),
+             ("node N12 along (0.8, 0.6, 0)", "N12", [0.8, 0.6, 0]))
     assert sorted(d.labels) == sorted(c[0] for c in cases)
     T = d.T.toarray()
     col = {lab: T[:, k] for k, lab in enumerate(d.labels)}
@@ -158,7 +164,7 @@ def test_free_nodes_keep_the_directions_their_ropes_act_in():
         np.testing.assert_allclose(col[lab], want, atol=1e-14)
     assert d.kinds == ("node",) * len(cases)
     d = build_dofs(m, m.effects.__class__(**{**vars(m.effects), "sway": True}))
-    assert sorted(d.labels) == sorted(f"node N{i} {a}" for i in (1, 2, 3, 4, 6, 7, 8, 9, 10)
+    assert sorted(d.labels) == sorted(f"node N{i} {a}" for i in (1, 2, 3, 4, 6, 7, 8, 9, 10, 11, 12)
                                       for a in "xyz")
     np.testing.assert_allclose(abs(d.T.toarray()).sum(axis=0), 1)
 
