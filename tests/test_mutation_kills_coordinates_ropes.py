@@ -92,6 +92,10 @@ def test_tackle_mesh_with_a_drum_at_the_start_by_hand():
         "node B z", "node rope r fall 1 node 1 along (0.333, 0.667, 0.667)",
         "node rope r fall 2 node 1 z", "node rope r fall 3 node 1 z", "drum hoist",
         "slip r over S (pass 1)", "slip r over B (pass 2)", "slip r (extra length)")
+    assert s.dofs.kinds == ("node",) * 4 + ("drum",) + ("slip",) * 3
+    # a slip coordinate is the slip itself, in metres (T = 1 on its primitive entry)
+    np.testing.assert_array_equal(s.dofs.T.toarray()[s.dofs.layout.slip([0, 1, 2])][:, 5:],
+                                  np.eye(3))
 
 
 def test_tackle_elements_condense_to_the_massless_rope():
