@@ -333,7 +333,7 @@ def test_entry_of_names_the_model_entry():
 def test_rope_mass_zero_meshes_nothing_and_a_rigid_structure_no_members():
     """rope_mass: 0 leaves a rope with mass a massless spring (no slips, no mesh); a
     rigid structure ignores the members' elements (only body k moves)."""
-    from tests.test_mutation_kills_coordinates_ropes import V_ROPE
+    from test_mutation_kills_coordinates_ropes import V_ROPE
     d = build_dofs(load("v.yaml", V_ROPE.replace("rope_mass: 1", "rope_mass: 0")))
     assert d.labels == ("node B x", "node B z", "drum hoist") and d.ropes is None
     m = load("b.yaml", BEAMS)
