@@ -246,6 +246,21 @@ PRESETS = {
                ["tests/test_mutation_kills_modal_paths.py",
                 "tests/test_mutation_kills_modal_graded.py", "tests/test_graded.py",
                 "tests/test_mutation_kills_condense_massless_map.py"]),
+    # coordinates/: the rope mesh, the constraint transform T_c, the kinematic map and
+    # the member mesh, by hand on small models (every closed-form test reaches them, but
+    # runs whole analyses: minutes per mutant); ~1-3 s per file
+    "coords_ropes": ("cranefe/coordinates/ropes.py",
+                     ["tests/test_mutation_kills_coordinates_ropes.py"]),
+    "coords_constraints": ("cranefe/coordinates/constraints.py",
+                           ["tests/test_mutation_kills_coordinates_constraints.py"]),
+    # dofmap: build_dofs is reached by all four files (rope meshes, constraints, members)
+    "coords_dofmap": ("cranefe/coordinates/dofmap.py",
+                      ["tests/test_mutation_kills_coordinates_dofmap.py",
+                       "tests/test_mutation_kills_coordinates_ropes.py",
+                       "tests/test_mutation_kills_coordinates_constraints.py",
+                       "tests/test_mutation_kills_coordinates_members.py"]),
+    "coords_members": ("cranefe/coordinates/members.py",
+                       ["tests/test_mutation_kills_coordinates_members.py"]),
 }
 
 
