@@ -317,6 +317,12 @@ def test_named_profiles():
                               rel=REL)
     shape, d = S.profile_shape("IPE 300")
     assert shape == "i" and d["tw"] == pytest.approx(0.0071, rel=REL)
+    # every I/H family (HEA 220: h 210, b 220, tw 7, tf 11, r 18; HEM 300: 340, 310, 21,
+    # 39, 27)
+    assert S.profile_shape("HEA 220") == ("i", pytest.approx(
+        {"b": 0.22, "h": 0.21, "tw": 0.007, "tf": 0.011, "r": 0.018}, rel=REL))
+    assert S.profile_shape("HEM300") == ("i", pytest.approx(
+        {"b": 0.31, "h": 0.34, "tw": 0.021, "tf": 0.039, "r": 0.027}, rel=REL))
     shape, d = S.profile_shape("L 100x10")
     assert shape == "angle"
     assert d == pytest.approx({"h": 0.1, "b": 0.1, "t": 0.01, "r1": 0.012, "r2": 0.006},
@@ -366,3 +372,29 @@ def test_optional_dimensions_default_to_sharp():
     assert set(S.SHAPES) == {"rectangle", "circle", "tube", "box", "i", "h", "channel",
                              "angle"}
     assert S.SHAPES["box"][0] == ("b", "h", "t")
+
+
+def test_profile_table_read_afresh(monkeypatch):
+    # the table is read once per process; read it here again (a forked mutant run would
+    # otherwise see the table its parent read): comment lines skipped, the header's
+    # columns as keys, numbers as floats, blank cells None, name and family as text
+    monkeypatch.setattr(S, "_TABLE", None)
+    t = S.profile_table()
+    assert S.profile_table() is t                          # cached
+    first = next(iter(t.items()))
+    assert first[0] == "IPE80" and first[1]["name"] == "IPE 80"
+    assert first[1]["family"] == "IPE" and first[1]["h"] == 80.0 and first[1]["A"] == 7.64
+    assert first[1]["t"] is None and first[1]["It"] == 0.67
+    assert t["L100x100x10"]["Iu"] == 280.0 and t["L100x100x10"]["tw"] is None
+    assert len(t) == len(S.profile_names()) > 400
+
+
+def test_angle_principal_defaults_are_sharp():
+    # angle_principal(h, b, t) without radii is the sharp angle: from the hand pieces
+    _, _, _, Iy0, Iz0, Iyz0 = _angle_ref(0.15, 0.09, 0.012, 0.0, 0.0)
+    m, rad = (Iy0 + Iz0) / 2, math.sqrt(((Iy0 - Iz0) / 2) ** 2 + Iyz0**2)
+    Iu, Iv = S.angle_principal(0.15, 0.09, 0.012)
+    _close(Iu, m + rad)
+    _close(Iv, m - rad)
+    A, _, _, _, _, _ = S.angle_geometry(0.15, 0.09, 0.012)
+    _close(A, 0.012 * (0.15 + 0.09 - 0.012))
