@@ -33,6 +33,7 @@ from cranefe.analysis.luffing import optimum as O
 
 K, A0, AK = 0.8, 0.3, 1.1          # f = k; E0 = e^0.24, Ek = e^0.88
 C_ = 0.5                           # J = (c + alpha)^2
+PI4 = math.pi / 4
 TAUS = np.array([0.0, 0.13, 0.5, 0.71, 1.0])
 
 
@@ -92,6 +93,20 @@ def test_exact_law_sqrt_case_and_range():
         _allclose(got, want, 1e-11)
 
 
+@pytest.mark.parametrize("k", [8.0, -8.0])
+def test_exact_law_newton_stays_in_the_range(k):
+    # S strongly convex (k > 0) or concave (k < 0): Newton from the linear law jumps past
+    # alphak (convex) or alpha0 (concave) at tau = 1/2 (first step 3.3 rad on a range of
+    # 1); sqrt(J) here exists only on [alpha0, alphak] (like a linkage's inertia past its
+    # range: nan), so the iterates must be held in it
+    def sqrtJ(a):
+        a = np.asarray(a, float)
+        return np.where((a >= 0) & (a <= 1), np.exp(k * a), np.nan)
+    law = O.exact_law(lambda a: (sqrtJ(a) - 1) / k, sqrtJ, lambda a: k + 0 * a, 0.0, 1.0)
+    for got, want in zip(law.evaluate(TAUS), _log_law(TAUS, 0.0, 1.0, k)):
+        np.testing.assert_allclose(got, want, rtol=1e-12)   # alpha. up to e^8: relative
+
+
 def test_quadrature_law_from_values_of_J():
     calls = []
 
@@ -113,6 +128,18 @@ def test_quadrature_law_from_values_of_J():
     law = O.quadrature_law(reduced, AK, A0, m, which="reduced")
     for got, want in zip(law.evaluate(TAUS), _sqrt_law(TAUS, AK, A0)):
         _allclose(got, want)
+    # m = 2: sqrt(J) = c + alpha is linear, so its 2-point interpolant is exact and so
+    # are alpha and alpha.; alpha.. uses the linear interpolant of f = 1 / (c + alpha)
+    # through the two Chebyshev points 0.7 -+ 0.4 cos(pi / 4)
+    law = O.quadrature_law(reduced, A0, AK, 2, which="reduced")
+    al, d1, d2 = law.evaluate(TAUS)
+    ref = _sqrt_law(TAUS)
+    _allclose(al, ref[0])
+    _allclose(d1, ref[1])
+    p, q = 0.7 - 0.4 * math.cos(PI4), 0.7 + 0.4 * math.cos(PI4)
+    fp, fq = 1 / (C_ + p), 1 / (C_ + q)
+    f_lin = fp + (fq - fp) * (ref[0] - p) / (q - p)
+    _allclose(d2, -f_lin * ref[1] ** 2)
 
 
 def test_paper_trial_by_polynomials():
@@ -166,6 +193,10 @@ def test_collocation_converges_to_the_log_law(with_df):
     law = O.collocation(lambda a: 1 / (C_ + a), A0, AK, O.chebyshev_points(24),
                         df=(lambda a: -1 / (C_ + a) ** 2) if with_df else None)
     assert law.status == 0
+    # Newton with the exact matrix converges quadratically from the linear law: 5
+    # iterations to 1e-14 here, with f' exact or by central differences (error 1e-12 of
+    # f': the same iterates); a wrong Newton matrix converges linearly, in more
+    assert law.iterations <= 5
     for got, want in zip(law.evaluate(TAUS), _sqrt_law(TAUS)):
         _allclose(got, want, 1e-9)
 
@@ -205,8 +236,26 @@ def test_paper_map_variants_by_hand():
               [first, a[0] - V2**2 * f2, -2 / 3 * a[0] - 10 / 9 * a[1] + 4 / 9 * V3**2 * f3])
     _allclose(O.paper_map(a, f, A0, AK, "printed"),
               [first, a[0] - V2**2 * f2, -2 / 3 * a[0] - 10 / 9 * a[2] + 4 / 9 * V3**2 * f3])
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="other"):
         O.paper_map(a, f, A0, AK, "other")
+
+
+def _hand_G(a, f):
+    """The corrected map (paper_map's docstring) with alpha. at 1/4, 1/2, 3/4 of the
+    trial function, written out; complex a allowed."""
+    a0, a1, a2 = a
+    D = AK - A0
+    x = np.array([0.25, 0.5, 0.75])
+    al = A0 + D * x + x * (1 - x) * (a0 + a1 * x + a2 * x**2)
+    V = D + a0 * (1 - 2 * x) + a1 * (2 * x - 3 * x**2) + a2 * (3 * x**2 - 4 * x**3)
+    f1, f2, f3 = f(al)
+    return np.array([(a1 + 1.5 * a2) / 4 + 0.5 * V[0] ** 2 * f1, -2 * a0 + V[1] ** 2 * f2,
+                     -8 / 9 * a0 - 10 / 9 * a1 + 4 / 9 * V[2] ** 2 * f3])
+
+
+def _hand_jacobian(a, f, h=1e-30):
+    return np.column_stack([_hand_G(np.asarray(a, complex) + 1j * h * e, f).imag / h
+                            for e in np.eye(3)])
 
 
 def test_paper_collocation_fixed_point_solves_the_residuals():
@@ -234,6 +283,12 @@ def test_paper_collocation_fixed_point_solves_the_residuals():
     assert law.info["spectral_radius_relaxed"] < 1
     plain = O.paper_collocation(f, A0, AK)
     assert plain.status == 2 and plain.info["fixed_point_found"]
+    assert plain.info["relax"] == 1.0 and plain.name == "paper 3-point (corrected)"
+    # the iteration's matrix at the fixed point by complex steps (exact to rounding) of
+    # the corrected map written out by hand: its eigenvalues (the module's central
+    # differences with h = 1e-7: 1e-9)
+    mu = np.linalg.eigvals(_hand_jacobian(a, f))
+    _allclose(law.info["spectral_radius"], np.abs(mu).max(), 1e-7)
     _allclose(plain.info["fixed_point"], a, 1e-12)     # the same fixed point, Newton's
     _allclose(plain.evaluate(TAUS)[0], law.evaluate(TAUS)[0], 1e-12)
 
@@ -258,6 +313,20 @@ def test_paper_collocation_linear_map_spectrum():
     # a large f drives the iterates off: diverged (status 2), the Newton point known
     law = O.paper_collocation(lambda x: 6 + 0 * x, A0, AK, "printed")
     assert law.status == 2 and law.message.startswith("fixed-point iteration diverged")
+    h = law.info["history"]          # stopped at the first change above 1e6
+    assert h[-1] > 1e6 >= max(h[:-1]) and np.isfinite(h[-1])
+    assert law.info["variant"] == "printed" and law.name == "paper 3-point (printed)"
+    # the printed map's own fixed point (Newton), not the corrected one's (f = 1/(c + a):
+    # the printed iteration neither converges nor diverges in 500 sweeps)
+    f = lambda x: 1 / (C_ + x)
+    law = O.paper_collocation(f, A0, AK, "printed")
+    assert law.status == 1 and law.iterations == 500 and law.info["fixed_point_found"]
+    fp = np.array(law.info["fixed_point"])
+    _allclose(O.paper_map(fp, f, A0, AK, "printed"), fp, 1e-12)
+    assert np.abs(O.paper_map(fp, f, A0, AK) - fp).max() > 0.1
+    # a slow iteration keeps the first 200 changes of its history
+    law = O.paper_collocation(lambda x: 1 / (C_ + x), A0, AK, relax=0.01, maxiter=230)
+    assert law.status == 1 and law.iterations == 230 and len(law.info["history"]) == 200
     law = O.paper_collocation(lambda x: 1 / (C_ + x), A0, AK, maxiter=3)
     assert law.status == 1 and law.iterations == 3
     assert law.message == "fixed-point iteration did not converge in 3 iterations"
@@ -266,6 +335,14 @@ def test_paper_collocation_linear_map_spectrum():
               np.zeros(3), 1e-12)
     _allclose(law.evaluate(TAUS)[0],
               O.paper_trial(law.info["fixed_point"], TAUS, A0, AK)[0], 0)
+
+
+def test_paper_collocation_nan_f():
+    # f nan everywhere: the iteration diverges at once and Newton finds no fixed point
+    law = O.paper_collocation(lambda x: np.full_like(x, np.nan), A0, AK)
+    assert law.status == 2 and law.iterations == 1
+    assert law.info["fixed_point_found"] is False and "spectral_radius" not in law.info
+    assert np.isnan(law.evaluate(TAUS)[0][1:-1]).all()
 
 
 def test_paper_collocation_raising_f_is_divergence():
@@ -285,6 +362,7 @@ def test_paper_collocation_raising_f_is_divergence():
 def test_bvp_log_law():
     law = O.bvp(_f_const, A0, AK)
     assert law.status == 0 and law.name == "solve_bvp tol=1e-08"
+    assert "converged" in law.message and 0 <= law.time_s < 60
     assert law.info["nodes"] >= 11 and law.evaluations > 0 and law.iterations >= 1
     for got, want in zip(law.evaluate(TAUS), _log_law(TAUS)):
         _allclose(got, want, 1e-7)
