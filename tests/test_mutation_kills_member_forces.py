@@ -39,7 +39,7 @@ members:
         elements: 2, section: {{shape: rectangle, b: {B}, h: {H}}}}}
   bars: {{type: truss, pairs: [[S1, W], [S2, W], [S3, W]], E: {E}, A: 0.002, rho: 0}}
   bare: {{type: beam, nodes: [S2, Z], E: {E}, G: {Gm}, A: 0.003, Iy: 1e-5, Iz: 1e-5,
-         J: 1e-5, rho: 0, orientation: [0, 1, 0], elements: 1}}
+         J: 1e-5, Wy: 1e-4, rho: 0, orientation: [0, 1, 0], elements: 1}}
 masses: {{T: {MT}, W: 800}}
 effects: {{structure: flexible}}
 """
@@ -178,7 +178,7 @@ def test_stresses_of_the_frame():
     for k in (0, 1):
         np.testing.assert_allclose(S[0, bars, :, k], np.column_stack([N, N]) / 0.002,
                                    rtol=1e-9)
-    # a 3D beam without Wy and Wz: nan
+    # a 3D beam with Wy but without Wz: nan
     assert np.isnan(S[0, _elements(mm, model, "bare")]).all()
 
 
@@ -193,6 +193,25 @@ members:
 masses: {{T: 1000}}
 effects: {{structure: flexible}}
 """
+
+
+def test_rigid_motions_give_no_forces():
+    # a small rigid motion u = t + theta x (x - x0), rotations theta at every node: no
+    # element is strained, so every section force is 0 (without the weight load); the
+    # trusses' ends both move (their N is the difference of the ends' motions)
+    from cranefe.assembly.springs import all_coords
+    model, system, static = _frame()
+    dofs = system.dofs
+    mm = dofs.members
+    X = all_coords(model, dofs.layout, mm)
+    t, th, x0 = np.array([1e-3, -2e-3, 3e-3]), np.array([2e-4, -1e-4, 3e-4]), X[1]
+    U = np.zeros_like(static.u)
+    for i, x in enumerate(X):
+        U[6 * i:6 * i + 3] = t + np.cross(th, x - x0)
+        U[6 * i + 3:6 * i + 6] = th
+    F = MF.element_end_forces(model, dofs.layout, mm, U, weight=False)
+    # against the forces of a unit strain of the arm: E A / l * 1e-3 ~ 1e7 N
+    np.testing.assert_allclose(F, 0, atol=1e-9 * E * B * H * 1e-3)
 
 
 def test_planar_beam_without_wz_and_without_wy():
@@ -361,6 +380,10 @@ def test_peak_stresses_summary_table_and_cells():
                       "element": None, "end": None}]
     mf.element_member = ("a", "a", "b")
     assert mf.peak_stresses() == peaks
+    # the all-nan member first: the others still follow
+    first = MF.MemberForces("static", mf.forces[:, [2, 0, 1]], mf.stress[:, [2, 0, 1]],
+                            [], element_member=("b", "a", "a"))
+    assert first.peak_stresses() == [dict(peaks[1]), dict(peaks[0], element=2)]
     mf.stress[0, 1, 1] = [50.0, 1.0]               # now at the end of element 1, state 1
     assert mf.peak_stresses()[0] == {"member": "a", "sigma_abs_max_Pa": 50.0, "state": 1,
                                      "element": 1, "end": "end"}
@@ -379,6 +402,9 @@ def test_peak_stresses_summary_table_and_cells():
     assert mf.table().splitlines()[1].endswith("  mode, element, end")
     mf.scale = {}
     assert mf.table().startswith("member forces (modes): 3")
+    mf.stress[0, 1, 1] = [1234565.5, 1.0]          # MPa to six figures: 1.23457
+    assert mf.table().splitlines()[2] == f"  {'a':<16} {'1.23457':>12}  1, 1, end"
+    mf.stress[0, 1, 1] = [50.0, 1.0]
     for kind, word in (("envelope", "state (1 min, 2 max)"), ("times", "output time")):
         mf.kind = kind
         assert mf.table().splitlines()[1].endswith(f"  {word}, element, end")
