@@ -313,9 +313,17 @@ def test_modal_and_run_forces_are_linear_in_the_shape():
     for k in range(3):
         np.testing.assert_allclose(run.forces[k], Fs + c[k] * Fn, rtol=0, atol=1e-9 * sc)
     assert run.element_member == MF.element_members(model, mm)
+    assert run.pieces == MF.pieces(model, mm)
     # envelope: min and max over the times, in chunks (2: the last chunk of one time)
     env = MF.transient_envelope(model, dofs, static.u, c[:, None] * q[None], chunk=2)
     assert env.kind == "envelope" and env.forces.shape[0] == 2
+    # the archive stores element_member; the documents need the pieces
+    assert env.element_member == MF.element_members(model, mm)
+    assert env.pieces == MF.pieces(model, mm)
+    st = MF.static_member_forces(model, dofs.layout, mm, static.u)
+    assert st.kind == "static" and st.element_member == MF.element_members(model, mm)
+    assert st.pieces == MF.pieces(model, mm)
+    np.testing.assert_allclose(st.forces, Fs[None], rtol=0, atol=1e-12 * sc)
     np.testing.assert_allclose(env.forces[0], run.forces.min(0), rtol=0, atol=1e-9 * sc)
     np.testing.assert_allclose(env.forces[1], run.forces.max(0), rtol=0, atol=1e-9 * sc)
     np.testing.assert_array_equal(np.isnan(env.stress[0]), np.isnan(run.stress[0]))
