@@ -13,7 +13,6 @@ equilibrium with its consistent load, which is statically equivalent to the unif
 weight), so the tolerance is round-off: 1e-9 of the largest force or moment.
 """
 
-import math
 
 import numpy as np
 import pytest
