@@ -261,6 +261,19 @@ PRESETS = {
                        "tests/test_mutation_kills_coordinates_members.py"]),
     "coords_members": ("cranefe/coordinates/members.py",
                        ["tests/test_mutation_kills_coordinates_members.py"]),
+    # sections: every shape's A, I, J, shear areas and moduli composed by hand from
+    # rectangles and quarter discs (not the module's spandrel integrals); named profiles
+    "sections": ("cranefe/model/sections.py",
+                 ["tests/test_mutation_kills_sections.py",
+                  "tests/test_sections_profiles.py::test_fillets_and_radii_are_exact_spandrels"]),
+    # luffing optimum: every solver of eq. 16 against the closed-form optima of
+    # J = exp(2 k alpha) and J = (c + alpha)^2 (tests/test_luffing.py builds a crane: slow)
+    "luffing_optimum": ("cranefe/analysis/luffing/optimum.py",
+                        ["tests/test_mutation_kills_luffing_optimum.py"]),
+    # member forces: a 3D L-frame with self-weight in both bending planes and torsion and
+    # a tripod against hand statics, on the module's functions (the CLI tests: slow)
+    "member_forces": ("cranefe/outputs/member_forces.py",
+                      ["tests/test_mutation_kills_member_forces.py"]),
 }
 
 
