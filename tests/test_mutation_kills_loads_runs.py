@@ -28,7 +28,7 @@ costs about a minute in a fresh copy (mutmut's); the numpy step is the reference
 tested against (tests/test_operation_fast.py).
 """
 
-from dataclasses import replace
+import time
 
 import numpy as np
 import pytest
@@ -78,6 +78,18 @@ def hoist(text=HOIST):
     return runs.lift_model(load("hoist.yaml", text))
 
 
+def timed(run, *args, **kw):
+    """run(*args, **kw) and its trace's `seconds`, which must lie within the wall time
+    of the call (a cost, measured by the run: between 0 and what the caller saw)."""
+    t0 = time.perf_counter()
+    out = run(*args, **kw)
+    wall = time.perf_counter() - t0
+    seconds = out[-2].seconds if run is runs.hoist_start or run is runs.joint_move \
+        else out[-1].seconds
+    assert 0 <= seconds <= wall
+    return out
+
+
 def test_trace_document():
     t = runs.Trace("x", "transient", {"a": 1}, 2.5, 10, 0.12345678)
     assert t.to_dict() == {"name": "x", "engine": "transient", "parameters": {"a": 1},
@@ -95,9 +107,10 @@ def test_working_point_without_ground_and_with_gravity_along_y():
     """No ground node: the axis is through the origin. Gravity (0, -4, 0): up is +y, so
     the radius is measured in the x-z plane; a node on the axis goes to +x (the chosen
     azimuth), a node at (3, 7, 4) (5 m off at azimuth (3, 0, 4) / 5) to radius 10:
-    (6, 7, 8); hook_height puts H's y to 2.5, x and z kept."""
+    (6, 7, 8), C 0.5 m off at +z to (0, 3, 10); hook_height puts H's y to 2.5, x and z
+    kept."""
     text = """cranefe: 1
-nodes: {A: [0, 9, 0], B: [3, 7, 4], H: [1, 5, 2]}
+nodes: {A: [0, 9, 0], B: [3, 7, 4], H: [1, 5, 2], C: [0, 3, 0.5]}
 ground: []
 gravity: [0, -4, 0]
 masses: {H: 100, B: 100}
@@ -105,8 +118,9 @@ springs:
   - {name: s1, type: axial, nodes: [A, H], stiffness: 1.0e5}
 """
     m = load("p.yaml", text)
-    s = spec(radius=10.0, radius_nodes=("A", "B"), hook_height=2.5)
+    s = spec(radius=10.0, radius_nodes=("A", "B", "C"), hook_height=2.5)
     X = runs.placed(m, s).coords
+    assert X[m.node_index["C"]] == pytest.approx([0.0, 3.0, 10.0], abs=1e-12)   # 0.5 m off
     assert X[m.node_index["A"]] == pytest.approx([10.0, 9.0, 0.0], abs=1e-12)
     assert X[m.node_index["B"]] == pytest.approx([6.0, 7.0, 8.0], abs=1e-12)
     assert X[m.node_index["H"]] == pytest.approx([1.0, 2.5, 2.0], abs=1e-12)
@@ -120,14 +134,16 @@ springs:
 
 
 def test_working_point_about_the_first_ground_node():
-    """The axis through the first ground node G1 = (2, 0, 0) (not G2); T at (5, 0, 10) is
-    3 m off it: radius 4 -> (6, 0, 10)."""
+    """The axis through the first ground node D = (2, 1, 3) (not S); a node at
+    (5, 5, 30) is 5 m off it at azimuth (3, 4) / 5: radius 10 -> (8, 9, 30); H below it
+    likewise -> (8, 9, 10) (3D model: no plane)."""
     text = HOIST.replace("nodes: {D: [0, 0, 0], S: [0, 0, 30], H: [0, 0, 10]}",
-                         "nodes: {D: [2, 0, 0], S: [5, 0, 30], H: [5, 0, 10]}")
+                         "nodes: {D: [2, 1, 3], S: [5, 5, 30], H: [5, 5, 10]}").replace(
+                             "plane: xz\n", "")
     m = load("g.yaml", text)
-    X = runs.placed(m, spec(radius=4.0, radius_nodes=("S", "H"))).coords
-    assert X[m.node_index["S"]] == pytest.approx([6.0, 0.0, 30.0], abs=1e-12)
-    assert X[m.node_index["H"]] == pytest.approx([6.0, 0.0, 10.0], abs=1e-12)
+    X = runs.placed(m, spec(radius=10.0, radius_nodes=("S", "H"))).coords
+    assert X[m.node_index["S"]] == pytest.approx([8.0, 9.0, 30.0], abs=1e-12)
+    assert X[m.node_index["H"]] == pytest.approx([8.0, 9.0, 10.0], abs=1e-12)
 
 
 @pytest.mark.parametrize("falls", [1, 2, 3])
@@ -140,6 +156,22 @@ def test_hook_travel_per_drum_radian(falls):
         "  lower: {EA: 1.0e7, path: [H, {node: B, falls: 4}]}\n"
     assert runs.hook_per_drum(load("b.yaml", text), "hoist") == \
         pytest.approx(R / falls, rel=1e-12)
+
+
+@pytest.mark.parametrize("first", [True, False])
+def test_a_drum_with_two_ropes(first):
+    """Two ropes leave the drum: the 2-fall hoist of H and a single fall to B; the mass
+    moved most (H, coefficient 2) decides: R / 2, in either order of the ropes."""
+    other = "  aux: {EA: 1.0e7, path: [hoist, T, B]}\n"
+    text = HOIST.replace("H: [0, 0, 10]}", "H: [0, 0, 10], T: [6, 0, 30], B: [6, 0, 10]}")\
+        .replace("ground: [D, S]", "ground: [D, S, T]").replace(
+            "H: 5000.0}", "H: 5000.0, B: 1000.0}")
+    if first:
+        text += other
+    else:
+        text = text.replace("ropes:\n", "ropes:\n" + other)
+    assert runs.hook_per_drum(load("two.yaml", text), "hoist") == \
+        pytest.approx(R / FALLS, rel=1e-12)
 
 
 def test_a_drum_that_moves_no_mass():
@@ -196,6 +228,12 @@ def test_default_time_step():
     assert runs._steps(spec(time_step=0.003), lift) == {"max_steps": 10**7,
                                                         "time_step": 0.003}
     assert runs._steps(spec(time_step=None)) == {"max_steps": 10**7}
+    # a soft rope (EA / 100): w_max = 0.645 rad/s, below 1, still 60 steps a period
+    soft = hoist(HOIST.replace(f"EA: {EA}", f"EA: {EA / 100}"))
+    w_soft = np.sqrt(K / 100 * (FALLS**2 / M + R**2 / J))
+    assert w_soft < 1
+    assert runs._steps(spec(time_step=None), soft)["time_step"] == \
+        pytest.approx(2 * np.pi / (60 * w_soft), rel=1e-9)
 
 
 def lifted(res, v):
@@ -212,7 +250,7 @@ def test_lift_off_retries_a_short_guess():
     but 2.78 > 2.6 -> 1.05 x 2.18 + 0.6."""
     lift = hoist()
     v = 0.125
-    res, tr = runs.lift_off(lift, spec(time_step=0.04), "slow", v / (R / FALLS))
+    res, tr = timed(runs.lift_off, lift, spec(time_step=0.04), "slow", v / (R / FALLS))
     assert res.lift_off_time == pytest.approx(G / (W**2 * v), rel=1e-6)
     assert tr.duration == pytest.approx(4.6, rel=1e-12) == res.duration
     assert (res.initial, res.ground_names, res.scene) == ("grounded", ("H",),
@@ -237,11 +275,28 @@ def test_lift_off_at_full_speed_within_the_first_guess():
     t_lift = lifted(res, 0.5)
     assert tr.duration == pytest.approx(1.6, rel=1e-12)
     assert res.rope_force_max_time[0] == pytest.approx(t_lift + np.pi / (2 * W), abs=0.02)
-    # guess = lift-off time - 0.6 + 0.6: the run ends exactly 0.6 s after the lift-off
-    # (to round-off of the lift-off's location, 1e-9 of the duration)
-    res, tr = runs.lift_off(lift, spec(after_lift_off=0.3), "exact", 0.5 / (R / FALLS),
-                            guess=t_lift)
+    # guess = the lift-off time: the run ends exactly after_lift_off after it (to
+    # round-off of the lift-off's location, 1e-9 of the duration); no time step given:
+    # 60 per period of the highest mode, shortened to a whole number in the run
+    res, tr = runs.lift_off(lift, spec(after_lift_off=0.3, time_step=None), "exact",
+                            0.5 / (R / FALLS), guess=t_lift)
     assert tr.duration == pytest.approx(t_lift + 0.3, rel=1e-12)
+    h = 2 * np.pi / (60 * np.sqrt(K * (FALLS**2 / M + R**2 / J)))
+    assert res.time_step == pytest.approx(tr.duration / np.ceil(tr.duration / h),
+                                          rel=1e-9)
+
+
+def test_lift_off_grounds_the_spec_loads_only():
+    """A hook block H (500 kg) hangs on the hoist, the load B (5000 kg) on a sling below
+    it: B alone rests on the ground (the transient core alone would ground every free
+    mass, H too)."""
+    text = HOIST.replace("H: [0, 0, 10]}", "H: [0, 0, 10], B: [0, 0, 8]}").replace(
+        f"masses: {{S: 10.0, H: {M}}}", "masses: {H: 500.0, B: 5000.0}") + \
+        "  sling: {EA: 1.0e8, path: [H, B]}\n"
+    res, tr = runs.lift_off(hoist(text), spec(loads=("B",), time_step=0.02), "chain",
+                            0.5 / (R / FALLS))
+    assert res.ground_names == ("B",) and tr.parameters["loads"] == ["B"]
+    assert np.isfinite(res.lift_off_time)
 
 
 def test_a_load_that_never_lifts():
@@ -258,7 +313,7 @@ def test_hoist_start_of_a_sudden_acceleration():
     0.8 s > pi / w: a = 0.3125 m/s^2 held for longer than half a period, so by (1) the
     peak is S0 + 2 m a / n, at pi / w; the run lasts the ramp + 0.6 s."""
     lift = hoist()
-    res, tr, acc = runs.hoist_start(lift, spec(ramp=0.8, after_lift_off=0.6), 2.0)
+    res, tr, acc = timed(runs.hoist_start, lift, spec(ramp=0.8, after_lift_off=0.6), 2.0)
     a = 0.25 / 0.8
     assert acc == pytest.approx(2.0 / 0.8, rel=1e-14)       # drum rad/s^2
     assert res.rope_force_static[0] == pytest.approx(S0, rel=1e-12)
@@ -310,7 +365,7 @@ def test_sudden_release():
     peak (m' + 2 dm) g / n at pi / w'; integrated by modal superposition with every mode;
     no time step given: 60 per period of the reduced model's highest mode."""
     lift = hoist()
-    res, reduced, tr = runs.release(lift, spec(time_step=None))
+    res, reduced, tr = timed(runs.release, lift, spec(time_step=None))
     m1, dm = 0.75 * M, 0.25 * M
     assert reduced.masses.mass.tolist() == [10.0, m1]
     assert lift.masses.mass.tolist() == [10.0, M]
@@ -329,6 +384,18 @@ def test_sudden_release():
                              "release_time_s": 0.0, "method": "modal (all modes)",
                              "time_step_s": pytest.approx(res.time_step, rel=1e-12),
                              "effects": {"sway": False, "damping": "none"}}
+
+
+def test_release_keeps_every_mode():
+    """With rope mass (10 elements a fall: more coordinates than the transient core's
+    default of 20 modes) every elastic mode is kept (the drum's free rotation is not
+    one)."""
+    text = HOIST.replace(f"EA: {EA}, ", f"EA: {EA}, mass_per_length: 2.0, ") + \
+        "effects: {rope_mass: 10}\n"
+    lift = hoist(text)
+    res, reduced, tr = runs.release(lift, spec(time_step=0.01, after_lift_off=0.05))
+    assert res.dofs > 21
+    assert res.modes == res.dofs - 1            # all but the free drum's rotation
 
 
 def test_slow_release():
@@ -390,7 +457,7 @@ def test_a_slider_move(jerk):
     as the highest node (the drum, 5.5 m) is above the load (3 m)."""
     m = load("cart.yaml", CART)
     mv = JointMove("travel", "slider", 0.1, 0.8, 0.2, jerk)
-    res, tr, a_max = runs.joint_move(m, spec(loads=("L",), tolerance=1e-6), mv)
+    res, tr, a_max = timed(runs.joint_move, m, spec(loads=("L",), tolerance=1e-6), mv)
     a = 0.1 / (0.8 - jerk)
     assert a_max == pytest.approx(a, rel=1e-14)
     assert res.drive_position[-1, 0] == pytest.approx(0.2, abs=1e-9)
