@@ -182,3 +182,86 @@ def test_a_model_without_a_turning_drum(tmp_path):
         parse(scene(tmp_path, text, "analysis: {type: loads, hoist: {drum: hoist}}\n"))
     assert e.value.message == ("unknown or braked drum 'hoist'; unbraked drums of the "
                                "model: none")
+
+
+POSITIVE = "must be positive (found {}); give a value > 0"
+NONNEG = "must not be negative (found {}); give a value >= 0"
+
+
+@pytest.mark.parametrize("analysis, entry, message", [
+    ("hoist: {creep: 0}", "analysis.hoist.creep", POSITIVE.format(0)),
+    ("release: {fraction: 0}", "analysis.release.fraction", POSITIVE.format(0)),
+    ("release: {fraction: 1.0}", "analysis.release.fraction",
+     "1: the released part dm/m must be below 1 (a part of the load stays on the hook)"),
+    ("release: {time: -0.1}", "analysis.release.time", NONNEG.format(-0.1)),
+    ("after_lift_off: 0", "analysis.after_lift_off", POSITIVE.format(0)),
+    ("time_step: 0", "analysis.time_step", POSITIVE.format(0)),
+    ("hoist: {jerk_time: -0.1}", "analysis.hoist.jerk_time", NONNEG.format(-0.1)),
+    ("radius: 0", "analysis.radius", POSITIVE.format(0)),
+    ("radius: 5.0", "analysis.radius_nodes",
+     "name the nodes that move to the radius (the trolley and the hook below it), e.g. "
+     "radius_nodes: [K, HOOK]"),
+    ("radius_nodes: {H: 1}", "analysis.radius_nodes", "must be a list, not a mapping"),
+    ("hook_height: high", "analysis.hook_height", None),
+    ("tolerance: 0", "analysis.tolerance", POSITIVE.format(0)),
+    ("radiuss: 5.0", "analysis.radiuss", None),
+])
+def test_every_key_names_its_entry(tmp_path, analysis, entry, message):
+    """Each number of a loads scene is checked under its own entry, positive or not
+    negative as it means (a time step, a radius: > 0; a release or jerk time: >= 0, 0
+    being sudden); misspelt keys are named."""
+    m = scene(tmp_path, HOIST, f"analysis:\n  type: loads\n  {analysis}\n")
+    with pytest.raises(ModelError) as e:
+        parse(m)
+    assert e.value.entry == entry
+    if message:
+        assert e.value.message == message
+
+
+@pytest.mark.parametrize("hc", ["HC1", "HC2", "HC3", "HC4"])
+@pytest.mark.parametrize("hd", ["HD1", "HD2", "HD3", "HD4", "HD5"])
+def test_every_class_is_accepted(tmp_path, hc, hd):
+    m = scene(tmp_path, HOIST, f"analysis: {{type: loads, hoisting_class: {hc}, "
+              f"drive_class: {hd}}}\n")
+    s = parse(m)
+    assert (s.hoisting_class, s.drive_class) == (hc, hd)
+
+
+def test_zero_values_that_mean_sudden(tmp_path):
+    """A jerk time of exactly half the hoist's ramp, a release time of 0 and a jerk
+    time of 0 are allowed."""
+    m = scene(tmp_path, HOIST, "analysis:\n  type: loads\n  hoist: {ramp: 1.0, "
+              "jerk_time: 0.5}\n  release: {fraction: 0.9, time: 0}\n")
+    s = parse(m)
+    assert (s.ramp, s.jerk, s.fraction, s.release_time) == (1.0, 0.5, 0.9, 0.0)
+    m = scene(tmp_path, HOIST, "analysis:\n  type: loads\n  hoist: {jerk_time: 0}\n")
+    assert parse(m).jerk == 0.0
+
+
+def test_several_drums_named_in_the_message(tmp_path):
+    two = HOIST.replace("ground: [D, S]", "ground: [D, S, E]").replace(
+        "S: [0, 0, 30]", "S: [0, 0, 30], E: [5, 0, 0]").replace(
+        "drums:\n", "drums:\n  aux: {node: E, radius: 0.2, inertia: 10, brake: false}\n")
+    m = scene(tmp_path, two, "analysis: {type: loads, hoist: {drum: winch}}\n")
+    with pytest.raises(ModelError) as e:
+        parse(m)
+    assert e.value.message == ("unknown or braked drum 'winch'; unbraked drums of the "
+                               "model: aux, hoist")
+
+
+def test_no_hoist_load_message(tmp_path):
+    m = scene(tmp_path, HOIST.replace("masses: {H: 5000.0}", "masses: {S: 5000.0}"),
+              "analysis: {type: loads}\n")
+    with pytest.raises(ModelError) as e:
+        parse(m)
+    assert e.value.message == ("cranefe loads finds no hoist load (a point mass at a "
+                               "node of its own hanging on the ropes); give "
+                               "analysis.hoist.load")
+
+
+def test_a_level_span_does_not_end_the_search_along_its_rope():
+    """The tie A - B - C: level from A to B, then down to C (a mass hanging below B):
+    B is not a load, A and C are."""
+    text = TWO_HOOKS.replace("B: [4, 0, 10]}", "B: [4, 0, 10], C: [4, 0, 5]}").replace(
+        "B: 1000.0}", "B: 1000.0, C: 500.0}").replace("path: [A, B]", "path: [A, B, C]")
+    assert parse(load("abc.yaml", text)).loads == ("A", "C")
