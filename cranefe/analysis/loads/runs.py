@@ -102,20 +102,15 @@ def s_curve_speeds(v_max, ramp, jerk, h):
     return table.tolist(), a
 
 
-def lift_off(model, spec, name, drum_speed, ramp=None, guess=None):
-    """Lift the grounded load at a prescribed drum speed (rad/s; from t = 0, or rising
-    along the hoist's start profile): -> (TransientResult, Trace). Runs until
-    `after_lift_off` seconds past the lift-off (again, longer, if `guess` of the
-    lift-off time was short)."""
+def lift_off(model, spec, name, drum_speed, guess=None):
+    """Lift the grounded load at a prescribed drum speed (rad/s, a step at t = 0: the
+    rigid drive of phi2; HD5's start is `hoist_start`): -> (TransientResult, Trace).
+    Runs until `after_lift_off` seconds past the lift-off (again, longer, if `guess` of
+    the lift-off time was short)."""
     import time
     t0 = time.perf_counter()
-    if ramp:
-        table, _ = s_curve_speeds(drum_speed, spec.ramp, spec.jerk,
-                                  _table_step(spec))
-        drive = {"speed": table}
-    else:
-        drive = {"speed": float(drum_speed)}
-    guess = guess or 1.0 + (spec.ramp if ramp else 0.0)
+    drive = {"speed": float(drum_speed)}
+    guess = guess or 1.0
     res = None
     for _ in range(6):
         duration = guess + spec.after_lift_off
@@ -131,8 +126,7 @@ def lift_off(model, spec, name, drum_speed, ramp=None, guess=None):
                             f"{res.duration:g} s at drum speed {drum_speed:g} rad/s")
     params = {"initial": "grounded", "loads": list(spec.loads), "drum": spec.drum,
               "drum_speed_rad_s": float(drum_speed),
-              "start": f"jerk-limited, {spec.ramp:g} s to full speed, jerk time "
-                       f"{spec.jerk:g} s" if ramp else "step to full speed at t = 0",
+              "start": "step to full speed at t = 0",
               "time_step_s": float(res.time_step),
               "effects": {"sway": False, "damping": "none"}}
     return res, Trace(name, "transient", params, float(res.duration), int(res.steps),

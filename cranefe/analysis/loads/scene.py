@@ -174,7 +174,10 @@ def _loads(model, r, hoist, assumed):
     below = set()
     for rope in model.ropes:
         for a, b in zip(rope.span_a, rope.span_b):
-            lo, hi = (a, b) if model.coords[a] @ up < model.coords[b] @ up else (b, a)
+            za, zb = model.coords[a] @ up, model.coords[b] @ up
+            if za == zb:
+                continue                 # a level span: neither mass hangs below the other
+            lo, hi = (a, b) if za < zb else (b, a)
             if hi in free and lo in free:
                 below.add(int(hi))       # a mass hangs below this one
     loads = [i for i in free if i not in below]
