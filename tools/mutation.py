@@ -214,15 +214,6 @@ PRESETS = {
     "loads_analysis": ("cranefe/analysis/loads/analysis.py",
                        ["tests/test_mutation_kills_loads_analysis.py",
                         "tests/test_loads.py::test_phi5_of_a_luffing_hinge"]),
-    # loads/scene.py: the loads scene's keys, defaults and errors (parse only, ~7 s)
-    "loads_scene": ("cranefe/analysis/loads/scene.py",
-                    ["tests/test_mutation_kills_loads_scene.py"]),
-    # loads/runs.py: the scenes behind the factors; the pure parts (working point,
-    # reeving ratio, s-curve table, default step, lift-off guesses) by hand in the
-    # scene kill tests, the runs through the load table
-    "loads_runs": ("cranefe/analysis/loads/runs.py",
-                   ["tests/test_mutation_kills_loads_scene.py",
-                    "tests/test_mutation_kills_loads_analysis.py"]),
     # analysis/buckling.py: critical gravity factor k/(m g l) of bars above hinges,
     # never-buckling cases, the Greenhill column (~12 s)
     "buckling": ("cranefe/analysis/buckling.py",
@@ -274,6 +265,14 @@ PRESETS = {
     # a tripod against hand statics, on the module's functions (the CLI tests: slow)
     "member_forces": ("cranefe/outputs/member_forces.py",
                       ["tests/test_mutation_kills_member_forces.py"]),
+    # loads/scene.py: the loads scene's keys, defaults and errors (parse only, ~10 s)
+    "loads_scene": ("cranefe/analysis/loads/scene.py",
+                    ["tests/test_mutation_kills_loads_scene.py",
+                     "tests/test_mutation_kills_loads_scene_more.py"]),
+    # loads/runs.py: every run behind the factors on one- and two-mass models against
+    # closed forms (operation engine without numba: its compilation costs a minute)
+    "loads_runs": ("cranefe/analysis/loads/runs.py",
+                   ["tests/test_mutation_kills_loads_runs.py"]),
 }
 
 
