@@ -1,0 +1,224 @@
+"""Value tests of the main loop of cranefe/analysis/operation/integrate.py (issue 20,
+mutation testing): its step sequence, rejections and breakpoints, which the error
+control hides from the values of a run (a step across a kink or a different step
+sequence stays within the tolerance), so they are checked where the steps are known
+exactly. Every run passes fast=False (the numpy loop of integrate.py; loop.py mirrors it
+and is tested equal to it by tests/test_operation_speed.py).
+
+- free fall: a load thrown up on a slack rope has the constant acceleration -g, which
+  the trapezoidal rule integrates exactly, so every step's error estimate is round-off
+  (< 1e-9, the controller's factor capped at 2 for anything below 0.09) and its
+  Newton iteration ends at the second iterate (the predictor q0 + h v0 + h^2/2 a0 is the
+  solution): the step sequence follows from the documented rules alone (docs/operations.md
+  "Integrator"): the first step min(max_step, 1e-3 duration, 1e-2); each accepted step
+  doubles the next (the controller's bound 2), but not the one after a rejection (bound
+  1); a Newton failure quarters the step, an error rejection multiplies it by
+  max(0.2, 0.9 err^(-1/3)); steps are cut to end at the breakpoints of the prescribed
+  motions (the trolley's kinks), after which the next step is the longer of the step
+  before the cut and the controller's; never longer than max_step. The failures are
+  injected by a Stepper whose step fails or reports an error on chosen calls;
+- a physical pendulum on a hinge (a joint coordinate) below a trolley moved by a
+  trapezoid: I_O phi'' = m d cos(phi) s''(t) - m g d sin(phi) against scipy's DOP853 at
+  rtol 1e-12, segment by segment between the kinks where s'' jumps; the steps end at
+  the kinks exactly, each evaluated with the acceleration from the left.
+"""
+
+import functools
+import itertools
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from test_mutation_kills_integrate import TROLLEY, _scene
+from test_mutation_kills_mechanism import trolley_xs
+
+from cranefe.analysis.operation import integrate as integ
+from cranefe.analysis.operation.integrate import simulate
+from cranefe.errors import AnalysisError
+
+G = 9.81
+
+# the trolley's trapezoid: distance 0.5 m, v_max 1 m/s, a_max 4 m/s^2: accelerating for
+# v/a = 0.25 s over 0.125 m, cruising 0.25 m for 0.25 s: kinks at 0.25, 0.5 and 0.75 s
+FREE = ("  duration: 1\n  tolerance: 1.0e-8\n  max_step: 0.2\n  output_step: 0.1\n"
+        "  drives:\n    trolley: {slider: travel, profile: {type: trapezoid, distance: 0.5, "
+        "v_max: 1, a_max: 4}}\n")
+# the load 5 m below the trolley (its rope's L0 is 9.9 m: slack), thrown up at g/2 m/s:
+# it rises 1.23 m and is back at t = 1 s, the rope slack throughout
+FREE_INITIAL = {"q": np.array([0.0, 5.0]), "v": np.array([0.0, G / 2])}
+
+
+def _run(model, stepper=None, **kw):
+    """simulate() recording every accepted step (t0, t1) (Recorder.accept's arguments)."""
+    steps = []
+
+    class Rec(integ.Recorder):
+        def accept(self, t0, q0, v0, a0, ev0, t1, *rest):
+            steps.append((t0, t1))
+            return super().accept(t0, q0, v0, a0, ev0, t1, *rest)
+
+    saved = integ.Recorder, integ.Stepper
+    integ.Recorder = Rec
+    if stepper is not None:
+        integ.Stepper = stepper
+    try:
+        res = simulate(model, fast=False, **kw)
+    finally:
+        integ.Recorder, integ.Stepper = saved
+    return res, steps
+
+
+def _failing(calls, err=None):
+    """A Stepper whose step fails (Newton) on the given call numbers (1-based), or,
+    with err, returns its solution with that error estimate instead."""
+
+    class Failing(integ.Stepper):
+        n = 0
+
+        def step(self, *args, **kw):
+            Failing.n += 1
+            out = super().step(*args, **kw)
+            if calls == "all" or Failing.n in calls:
+                return None if err is None else out[:4] + (err,)
+            return out
+
+    return Failing
+
+
+def _times(steps):
+    t = [steps[0][0]] + [b for _, b in steps]
+    assert all(b == a2 for (_, b), (a2, _) in itertools.pairwise(steps))   # contiguous
+    return t
+
+
+def test_free_fall_steps_double_and_end_at_the_kinks():
+    """Error-free steps (the estimate is round-off): 1, 2, 4, ... 64 ms from the first step 1e-3 x 1 s; at t = 0.127
+    the 128-ms step is cut to the kink at 0.25 (0.123 s); then the longer of 0.128 and
+    2 x 0.123 = 0.246, capped by max_step 0.2 -> 0.45; the cut 0.05 to the kink at 0.5;
+    then max(0.246, 0.4) = 0.4 capped -> 0.2 and the cut 0.05 twice, to 0.75 and to the
+    end. Newton: 2 iterations per step (the predictor is the solution)."""
+    model = _scene("free", TROLLEY, FREE)
+    res, steps = _run(model, initial=FREE_INITIAL)
+    want = [0, .001, .003, .007, .015, .031, .063, .127, .25, .45, .5, .7, .75, .95, 1.0]
+    np.testing.assert_allclose(_times(steps), want, rtol=0, atol=1e-15)
+    assert steps[7][1] == 0.25 and steps[9][1] == 0.5 and steps[11][1] == 0.75
+    assert res.steps == 14 and res.rejected == 0 and res.newton_iterations == 28
+    assert [e for _, e in res.events] == ["drive trolley starts", "drive trolley stops"]
+    # the free fall itself, exact (round-off over 14 steps)
+    z = res.mass_position[:, 0, 2]
+    np.testing.assert_allclose(z, 5.0 + G / 2 * res.times - G / 2 * res.times ** 2,
+                               atol=1e-12)
+    assert res.status == 0 and res.times[-1] == 1.0
+
+
+def test_a_newton_failure_quarters_the_step_and_the_next_does_not_grow():
+    """The 4th step (8 ms at t = 0.007) fails: retried at 2 ms; the step after a
+    rejection does not grow (2 ms again), then doubling: 0.009, 0.011, 0.015, 0.023,
+    0.039, 0.071, 0.135; cut to the kink (0.115 s), then max(0.128, 0.23) = 0.23 capped
+    at 0.2 -> 0.45, 0.5, 0.7, 0.75, 0.95, 1."""
+    model = _scene("free", TROLLEY, FREE)
+    res, steps = _run(model, _failing({4}), initial=FREE_INITIAL)
+    want = [0, .001, .003, .007, .009, .011, .015, .023, .039, .071, .135, .25, .45, .5,
+            .7, .75, .95, 1.0]
+    np.testing.assert_allclose(_times(steps), want, rtol=0, atol=1e-15)
+    assert res.steps == 17 and res.rejected == 1
+    assert res.newton_iterations == 2 * 18      # the failed call iterated as usual
+
+
+def test_an_error_rejection_shrinks_by_the_controller():
+    """The 4th step (8 ms at t = 0.007) reports the error 8: rejected, retried at
+    8 x 0.9 / 8^(1/3) = 3.6 ms, the next not longer (3.6 ms), then doubling: 0.0106,
+    0.0142, 0.0214, 0.0358, 0.0646, 0.1222, 0.2374; cut to 0.25 (0.0126 s), then
+    max(0.2304, 0.0252) = 0.2304 capped at 0.2 -> 0.45, 0.5, 0.7, 0.75, 0.95, 1."""
+    model = _scene("free", TROLLEY, FREE)
+    res, steps = _run(model, _failing({4}, err=8.0), initial=FREE_INITIAL)
+    want = [0, .001, .003, .007, .0106, .0142, .0214, .0358, .0646, .1222, .2374, .25,
+            .45, .5, .7, .75, .95, 1.0]
+    np.testing.assert_allclose(_times(steps), want, rtol=0, atol=1e-14)
+    assert res.steps == 17 and res.rejected == 1
+
+
+@pytest.mark.parametrize("err, what, n", [
+    # Newton failing throughout: 1e-3 / 4^k < 1e-12 first at k = 15 (9.31e-13 s)
+    (None, "Newton's method does not converge at t = 0 s (step 9.31e-13 s)", 15),
+    # the error 1e3 throughout: factor max(0.2, 0.9e-1) = 0.2, 1e-3 x 0.2^13 = 8.19e-13
+    (1e3, "the step size collapsed at t = 0 s (step 8.19e-13 s)", 13),
+    # the error 2: factor 0.9 / 2^(1/3) = 0.714, 1e-3 x 0.714^k < 1e-12 at k = 62
+    (2.0, "the step size collapsed at t = 0 s (step 8.", 62),
+])
+def test_the_step_collapses_below_1e_12_of_the_duration(err, what, n):
+    """hmin = 1e-12 max(duration, 1 s): every step refused from the first (1 ms) on."""
+    model = _scene("free", TROLLEY, FREE)
+    with pytest.raises(AnalysisError) as exc:
+        _run(model, _failing("all", err=err), initial=FREE_INITIAL)
+    assert what in str(exc.value)
+    assert "the results up to t = 0 s are kept" in str(exc.value)
+    assert exc.value.result.status == 1 and exc.value.result.rejected == n
+
+
+# ----------------------------------------------------------------- joint coordinate
+
+PEND = """cranefe: 1
+name: pendulum on a trolley
+plane: xz
+nodes:
+  K: [0, 0, 10]
+  B: [0, 0, 8]
+bodies:
+  trolley: {mass: 500, com: [0, 0, 10], inertia: [10, 10, 10], nodes: [K]}
+  bob: {mass: 100, com: [0, 0, 8], inertia: [5, 5, 5], nodes: [B]}
+joints:
+  - {name: travel, type: slider, bodies: [ground, trolley], at: K, axis: [1, 0, 0],
+     range: [-1, 20]}
+  - {name: swing, type: hinge, bodies: [trolley, bob], at: K, axis: [0, 1, 0],
+     range: [-1, 1]}
+"""
+MP, DP, ICP = 100.0, 2.0, 5.0           # the bob: mass, com 2 m below the hinge, I_c
+IOP = ICP + MP * DP * DP                # about the hinge (Steiner)
+
+
+def _pend_rhs(t, y):
+    """x = s - d sin(phi), z = -d cos(phi) (a turn phi about +y takes +z to +x);
+    Lagrange: I_O phi'' - m d cos(phi) s'' = -m g d sin(phi)."""
+    s2 = trolley_xs(t)[2]
+    return [y[1], (MP * DP * math.cos(y[0]) * s2 - MP * G * DP * math.sin(y[0])) / IOP]
+
+
+@functools.cache
+def _pend_reference():
+    y, sols = [0.0, 0.0], []
+    for a, b in [(0, 1), (1, 2), (2, 3), (3, 4)]:
+        s = solve_ivp(_pend_rhs, (a, b), y, method="DOP853", rtol=1e-12, atol=1e-14,
+                      dense_output=True)
+        sols.append((a, b, s.sol))
+        y = s.y[:, -1]
+    return sols
+
+
+def test_pendulum_on_a_moving_trolley_against_scipy():
+    """The swing angle to 1.2e-4 rad over 4 s (tolerance 1e-7 x 10 m per step; measured
+    5.7e-5 rad, 1.3e-5 at 1e-8, 2.9e-6 at 1e-9: tolerance^(2/3), it converges to the
+    reference; the swing is ~0.1 rad). Steps end at the kinks 1, 2, 3 s exactly; the
+    step that ends there sees s'' from the left: from the wrong side its a1 is off by
+    m d s''-jump / I_O = 0.47 rad/s^2, an error estimate far above 1, rejected steps."""
+    model = _scene("pend", PEND, "  duration: 4\n  tolerance: 1.0e-7\n  output_step: 0.05\n"
+                   "  drives:\n    trolley: {slider: travel, profile: {type: trapezoid, "
+                   "distance: 2, v_max: 1, a_max: 1}}\n    sw: {hinge: swing, torque: 0}\n")
+    res, steps = _run(model)
+    ends = [b for _, b in steps]
+    assert 1.0 in ends and 2.0 in ends and 3.0 in ends and ends[-1] == 4.0
+    phi = res.drive_position[:, 1]
+    ref = []
+    for t in res.times:
+        ref.append(next(sol(t)[0] for a, b, sol in _pend_reference() if a <= t <= b))
+    err = np.abs(phi - np.array(ref)).max()
+    assert err < 1.2e-4, err
+    assert np.abs(phi).max() > 0.05
+    # no drive work on a free hinge; the trolley's prescribed motion works on the bob
+    assert res.energy_error < 1e-4, res.energy_error
+    # the cost: 449 steps, 2 rejected (measured; a step from the wrong side of a kink is
+    # rejected, 3 kinks); 2 Newton iterations per trial (near-linear: the predictor's
+    # error O(h^4) is gone after one correction)
+    assert res.rejected <= 2 and res.steps < 460, (res.steps, res.rejected)
+    assert res.newton_iterations == 2 * (res.steps + res.rejected)
