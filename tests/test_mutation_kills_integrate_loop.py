@@ -30,11 +30,13 @@ import math
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from test_mutation_kills_integrate import TROLLEY, _scene
+from test_mutation_kills_integrate import DROP2, TROLLEY, _scene
 from test_mutation_kills_mechanism import trolley_xs
 
 from cranefe.analysis.operation import integrate as integ
 from cranefe.analysis.operation.integrate import simulate
+from cranefe.analysis.operation.mechanism import Mechanism
+from cranefe.analysis.operation.scene import parse
 from cranefe.errors import AnalysisError
 
 G = 9.81
@@ -222,3 +224,72 @@ def test_pendulum_on_a_moving_trolley_against_scipy():
     # error O(h^4) is gone after one correction)
     assert res.rejected <= 2 and res.steps < 460, (res.steps, res.rejected)
     assert res.newton_iterations == 2 * (res.steps + res.rejected)
+
+
+# ----------------------------------------------------------------- two ropes, slack/taut
+
+def _bounce_events(L0, v0, m=100.0, EA=1.0e6, T=0.3):
+    """Times where a load thrown up from rest on its Hencky rope (S = EA ln(L/L0), 0 for
+    L <= L0; the rope from z = 10 m, the load at z with L = 10 - z) crosses L = L0:
+    DOP853 at rtol 1e-13, restarted at each crossing (the force's slope jumps there)."""
+    def f(t, y):
+        L = 10.0 - y[0]
+        return [y[1], -G + (EA * math.log(L / L0) / m if L > L0 else 0.0)]
+
+    t, y, out, d = 0.0, [10.0 - L0 * math.exp(m * G / EA), v0], [], -1
+    while True:
+        def ev(t, y):
+            return 10.0 - y[0] - L0
+        ev.terminal, ev.direction, d = True, d, -d
+        s = solve_ivp(f, (t, T), y, method="DOP853", rtol=1e-13, atol=1e-15, events=ev)
+        if s.status != 1:
+            return out
+        t, y = s.t_events[0][0], s.y_events[0][0].copy()
+        out.append(t)
+
+
+@functools.cache
+def _bounce_reference(L0a, L0b):
+    return _bounce_events(L0a, 2.0), _bounce_events(L0b, 1.0)
+
+
+def test_two_loads_thrown_up_slacken_their_ropes_one_at_a_time():
+    """Two loads at rest on their ropes (static stretch 4.9 mm, axial w = 44.7 rad/s)
+    thrown up at 2 and 1 m/s: each rope goes slack where the stretch vanishes, the
+    first while the other is still taut (the crossing test on all-taut ropes), the
+    second while the first is slack (the mixed test, each rope by its own flag); the
+    second load falls back (taut at 0.204 s) and bounces off (slack at 0.284 s) while
+    the first still flies. Each event against scipy: the first three to 5e-8 s
+    (tolerance 1e-8 x 5 m per step, measured 7e-9 to 1.7e-8 s); the bounce's slack
+    event to 4e-6 s (measured 1.5e-6; 3.6e-7 at tolerance 1e-9: tolerance^(2/3), it
+    converges): the axial oscillation's position error at 1 m/s."""
+    model = _scene("bounce", DROP2, "  duration: 0.3\n  tolerance: 1.0e-8\n  output_step: 0.01\n",
+                   "{sway: false}")
+    mech = Mechanism(model, parse(model))
+    L0 = mech.L0_ref
+    res = simulate(model, initial={"q": mech.q0.copy(), "v": np.array([2.0, 1.0])}, fast=False)
+    assert [w for _, w in res.events] == ["rope r1 slack", "rope r2 slack", "rope r2 taut",
+                                          "rope r2 slack"], res.events
+    ra, rb = _bounce_reference(float(L0[0]), float(L0[1]))
+    assert len(ra) == 1 and len(rb) == 3
+    want = [ra[0], rb[0], rb[1], rb[2]]
+    got = [t for t, _ in res.events]
+    np.testing.assert_allclose(got[:3], want[:3], rtol=0, atol=5e-8)
+    assert abs(got[3] - want[3]) < 4e-6, got[3] - want[3]
+
+
+# ----------------------------------------------------------------- long steps
+
+def test_a_constant_acceleration_takes_doubling_steps_up_to_max_step():
+    """The trolley pushed by 300 N carrying a guided load (sway off) accelerates at
+    F / (m_t + m) = 0.2 m/s^2 exactly: every step's estimate is round-off, so from
+    1e-3 x 10 s the steps double (0.01 ... 2.56 s, to t = 5.11) until max_step 4 s
+    (to 9.11) and the end cuts the last (0.89 s). s = 0.1 t^2 to round-off."""
+    model = _scene("guided10", TROLLEY, "  duration: 10\n  tolerance: 1.0e-8\n  max_step: 4\n"
+                   "  output_step: 1\n  drives:\n    f: {slider: travel, force: 300}\n",
+                   "{sway: false}")
+    res, steps = _run(model)
+    want = [0, .01, .03, .07, .15, .31, .63, 1.27, 2.55, 5.11, 9.11, 10.0]
+    np.testing.assert_allclose(_times(steps), want, rtol=0, atol=1e-13)
+    assert res.steps == 11 and res.rejected == 0 and res.newton_iterations == 22
+    np.testing.assert_allclose(res.drive_position[:, 0], 0.1 * res.times ** 2, atol=1e-12)
