@@ -293,3 +293,65 @@ def test_a_constant_acceleration_takes_doubling_steps_up_to_max_step():
     np.testing.assert_allclose(_times(steps), want, rtol=0, atol=1e-13)
     assert res.steps == 11 and res.rejected == 0 and res.newton_iterations == 22
     np.testing.assert_allclose(res.drive_position[:, 0], 0.1 * res.times ** 2, atol=1e-12)
+
+
+# ----------------------------------------------------------------- units and masses
+
+def test_the_position_error_weighs_a_drum_angle_by_its_radius():
+    """A torque-driven drum (radius 0.5 m) is a coordinate in radians: the estimate
+    weighs its acceleration difference by the radius (metres of rope), the load's not;
+    a slack rope's force term left out: err = max(|da_z|, 0.5 |da_theta|) / tol h^2/12."""
+    from test_mutation_kills_integrate import _stepper
+    from test_mutation_kills_mechanism import WINCH
+
+    model = _scene("winch", WINCH, "  duration: 5\n  tolerance: 1.0e-6\n  drives:\n"
+                   "    h: {drum: hoist, torque: 3000}\n", "{sway: false}")
+    mech, st = _stepper(model)
+    assert mech.n == 2 and len(mech.qdrums) == 1
+    np.testing.assert_array_equal(st.wq, [1.0, 0.5])
+    taut = mech.taut0.copy()
+    a0, ev = st.accel(0.0, mech.q0.copy(), np.zeros(2), taut)
+    h, tol = 0.01, 1e-6 * model.length_scale
+    for da, e in [([1e-3, 4e-3], 2e-3), ([3e-3, 4e-3], 3e-3)]:
+        err = st.error(h, a0, a0 + np.array(da), ev, np.array([False]))
+        assert err == pytest.approx(e / tol * h * h / 12, rel=1e-12)
+
+
+LIGHT = """cranefe: 1
+name: arm with a light load
+plane: xz
+nodes:
+  O: [0, 0, 10]
+  T: [4, 0, 10]
+  P: [0, 0, 14]
+  H: [4, 0, 8]
+ground: [P]
+masses: {H: 0.5}
+bodies:
+  arm: {mass: 200, com: [2, 0, 10], inertia: [1, 50, 50], nodes: [O, T]}
+joints:
+  - {name: luff, type: hinge, bodies: [ground, arm], at: O, axis: [0, 1, 0],
+     range: [-1, 1]}
+ropes:
+  stay: {EA: 5.0e8, path: [P, T]}
+  sling: {EA: 1.0e4, path: [T, H]}
+"""
+
+
+def test_a_light_load_beside_a_joint_coordinate_is_accelerated():
+    """With a joint coordinate the accelerations are solved block by block (the loads'
+    diagonal M, the joint's M_J): a 0.5 kg load on a 2 m sling (EA 1e4 N, static force
+    m g) lifted by 1 mm: m z'' = EA ln(L/L0) - m g = EA ln(1 - 1e-3/2) (L0 = 2 exp(-m g/EA)),
+    z'' = -10.0 m/s^2."""
+    from test_mutation_kills_integrate import _stepper
+
+    model = _scene("light", LIGHT, "  duration: 1\n  tolerance: 1.0e-6\n  drives:\n"
+                   "    d: {hinge: luff, torque: -3924}\n")
+    mech, st = _stepper(model)
+    assert st.nJ == 1
+    q = mech.q0.copy()
+    iz = [i for i in range(mech.n) if q[i] == pytest.approx(8.0)]
+    assert len(iz) == 1
+    q[iz[0]] += 1e-3
+    a, _ = st.accel(0.0, q, np.zeros(mech.n), mech.taut0.copy())
+    assert a[iz[0]] == pytest.approx(1.0e4 * math.log(1 - 1e-3 / 2) / 0.5, rel=1e-6)
