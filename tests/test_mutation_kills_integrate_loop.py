@@ -355,3 +355,65 @@ def test_a_light_load_beside_a_joint_coordinate_is_accelerated():
     q[iz[0]] += 1e-3
     a, _ = st.accel(0.0, q, np.zeros(mech.n), mech.taut0.copy())
     assert a[iz[0]] == pytest.approx(1.0e4 * math.log(1 - 1e-3 / 2) / 0.5, rel=1e-6)
+
+
+# ----------------------------------------------------------------- messages
+
+def test_two_blocking_ignores_a_span_between_two_fixed_points():
+    """The winch's rope runs drum W -> sheave S -> load H: the span W-S joins two fixed
+    points (it cannot be hauled shut by the load), so only the span S-H at 1 % of its
+    length is two-blocking, named by its nodes."""
+    from test_mutation_kills_mechanism import WINCH
+
+    model = _scene("winch2", WINCH, "  duration: 5\n  drives:\n    h: {drum: hoist, torque: 3000}\n",
+                   "{sway: false}")
+    mech = Mechanism(model, parse(model))
+    names = model.node_names
+    spans = [(names[a], names[b]) for a, b in zip(mech.span_a, mech.span_b)]
+    iw = [i for i, s in enumerate(spans) if set(s) == {"W", "S"}]
+    ih = [i for i, s in enumerate(spans) if set(s) == {"S", "H"}]
+    assert len(iw) == 1 and len(ih) >= 1
+    l = mech.span_ref.copy()
+    l[iw[0]] = 1e-4 * mech.span_ref[iw[0]]          # fixed points: never two-blocking
+    integ._two_blocking(mech, l, 1.0)
+    l[ih[0]] = 0.5e-2 * mech.span_ref[ih[0]]
+    with pytest.raises(AnalysisError) as exc:
+        integ._two_blocking(mech, l, 1.0)
+    assert str(exc.value).startswith(f"at t = 1 s the span {spans[ih[0]][0]}-{spans[ih[0]][1]} "
+                                     "is down to 0.05 m (0.5% of its length): the load was "
+                                     "hauled into its sheave (two-blocking); likely cause: a "
+                                     "drive torque far above what holds the load")
+
+
+def test_failure_messages_in_full():
+    """The messages as docs/operations.md words them (the whole sentence, not a part)."""
+    taut, slack = np.array([True]), np.array([False])
+    e = integ._blowup(1.5, 2e-13, "the step size collapsed", None, None, taut)
+    assert str(e) == ("the step size collapsed at t = 1.5 s (step 2e-13 s): likely cause: a "
+                      "drive accelerating the load harder than the ropes can transmit, or a "
+                      "tolerance too tight for the rope's axial frequency; the results up to "
+                      "t = 1.5 s are kept")
+    e = integ._blowup(1.5, 2e-13, "Newton's method does not converge", None, None, slack)
+    assert str(e) == ("Newton's method does not converge at t = 1.5 s (step 2e-13 s): likely "
+                      "cause: ropes switching between slack and taut (snatch loads) faster "
+                      "than the step can follow; the results up to t = 1.5 s are kept")
+    for status, what in [(integ._loop.NEWTON, "Newton's method does not converge"),
+                         (integ._loop.COLLAPSE, "the step size collapsed")]:
+        with pytest.raises(AnalysisError) as exc:
+            integ._fail(None, status, 1.0, 1e-3, taut, None)
+        assert str(exc.value).startswith(f"{what} at t = 1 s (step 0.001 s): likely cause: a drive")
+    with pytest.raises(AnalysisError) as exc:
+        integ._fail(None, -12345, 1.0, 1e-3, taut, None)
+    assert str(exc.value) == (f"more than {integ.MAX_STEPS} steps at t = 1 s; raise "
+                              "analysis.tolerance")
+
+
+def test_the_step_limit_counts_accepted_steps(monkeypatch):
+    """MAX_STEPS = 5: the free fall's 6th step (ending at 0.063 s, the steps above) is
+    one too many; the results up to there are kept (status 1)."""
+    monkeypatch.setattr(integ, "MAX_STEPS", 5)
+    model = _scene("free", TROLLEY, FREE)
+    with pytest.raises(AnalysisError) as exc:
+        _run(model, initial=FREE_INITIAL)
+    assert str(exc.value) == "more than 5 steps at t = 0.063 s; raise analysis.tolerance"
+    assert exc.value.result.status == 1 and exc.value.result.steps == 6
