@@ -149,9 +149,14 @@ def test_an_error_rejection_shrinks_by_the_controller():
     # the error 2: factor 0.9 / 2^(1/3) = 0.714, 1e-3 x 0.714^k < 1e-12 at k = 62
     (2.0, "the step size collapsed at t = 0 s (step 8.", 62),
 ])
-def test_the_step_collapses_below_1e_12_of_the_duration(err, what, n):
-    """hmin = 1e-12 max(duration, 1 s): every step refused from the first (1 ms) on."""
-    model = _scene("free", TROLLEY, FREE)
+@pytest.mark.parametrize("T", [1, 2])
+def test_the_step_collapses_below_1e_12_of_the_duration(err, what, n, T):
+    """hmin = 1e-12 max(duration, 1 s): every step refused from the first (1e-3 T) on
+    (with T = 2 s the bound and the first step double: the same count, twice the step)."""
+    model = _scene(f"free{T}", TROLLEY, FREE.replace("duration: 1\n", f"duration: {T}\n"))
+    if T == 2:
+        what = what.replace("9.31e-13", "1.86e-12").replace("8.19e-13", "1.64e-12") \
+            .replace("(step 8.", "(step 1.")
     with pytest.raises(AnalysisError) as exc:
         _run(model, _failing("all", err=err), initial=FREE_INITIAL)
     assert what in str(exc.value)
@@ -417,3 +422,45 @@ def test_the_step_limit_counts_accepted_steps(monkeypatch):
         _run(model, initial=FREE_INITIAL)
     assert str(exc.value) == "more than 5 steps at t = 0.063 s; raise analysis.tolerance"
     assert exc.value.result.status == 1 and exc.value.result.steps == 6
+
+
+def test_the_first_step_is_at_most_10_ms():
+    """h0 = min(max_step, 1e-3 duration, 1e-2): over 20 s the 10-ms cap decides; the
+    trolley pushed by 75 N (0.05 m/s^2, s = 0.025 t^2) then doubles its error-free steps
+    to 5.11 s, takes max_step 4 s thrice and the cut 2.89 s to the end."""
+    model = _scene("guided20", TROLLEY, "  duration: 20\n  tolerance: 1.0e-8\n  max_step: 4\n"
+                   "  output_step: 1\n  drives:\n    f: {slider: travel, force: 75}\n",
+                   "{sway: false}")
+    res, steps = _run(model)
+    want = [0, .01, .03, .07, .15, .31, .63, 1.27, 2.55, 5.11, 9.11, 13.11, 17.11, 20.0]
+    np.testing.assert_allclose(_times(steps), want, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(res.drive_position[:, 0], 0.025 * res.times ** 2, atol=1e-11)
+
+
+def test_a_given_state_defaults_to_the_static_one():
+    """initial with only "v" keeps the static positions (a load at rest stays there);
+    with only "q" the velocities are zero (the free fall from rest, exact until the
+    rope is taut again near 1 s)."""
+    from test_mutation_kills_integrate import ROPE
+
+    model = _scene("rest", ROPE, "  duration: 0.05\n  tolerance: 1.0e-8\n  output_step: 0.01\n",
+                   "{sway: false}")
+    res = simulate(model, initial={"v": np.zeros(1)}, fast=False)
+    np.testing.assert_allclose(res.mass_position[:, 0, 2], 5.0, atol=1e-12)
+    model = _scene("free", TROLLEY, FREE)
+    res = simulate(model, initial={"q": FREE_INITIAL["q"]}, fast=False)
+    free = res.times <= 0.9             # 4.9 m down at 1 s, its rope (9.9 m) taut again
+    np.testing.assert_allclose(res.mass_position[free, 0, 2],
+                               5.0 - G / 2 * res.times[free] ** 2, atol=1e-12)
+
+
+def test_drive_events_inside_the_run_only():
+    """A move that stops at the end of the run (0.75 s) has no "stops" event; one that
+    starts at the end (start: 0.5, the run 0.5 s long) no "starts" event."""
+    model = _scene("stopT", TROLLEY, FREE.replace("duration: 1\n", "duration: 0.75\n"))
+    res = simulate(model, initial=FREE_INITIAL, fast=False)
+    assert res.events == [(0.0, "drive trolley starts")]
+    model = _scene("startT", TROLLEY, FREE.replace("duration: 1\n", "duration: 0.5\n")
+                   .replace("a_max: 4}", "a_max: 4, start: 0.5}"))
+    res = simulate(model, initial=FREE_INITIAL, fast=False)
+    assert res.events == []
