@@ -464,3 +464,31 @@ def test_drive_events_inside_the_run_only():
                    .replace("a_max: 4}", "a_max: 4, start: 0.5}"))
     res = simulate(model, initial=FREE_INITIAL, fast=False)
     assert res.events == []
+
+
+def test_a_failed_trial_of_the_event_search_quarters_the_step():
+    """Two loads falling freely onto their ropes (0.2 and 0.2005 m above taut): from
+    1e-3 x 0.2022 s the steps double to t = 511 x 2.022e-4 = 0.1033242 s; the next, cut
+    to the end (0.0988758 s), crosses both taut points and the event search starts. If
+    its first trial fails (Newton), the step is retried at a quarter (to 0.12804315 s),
+    one more rejection; the events stay at sqrt(2 d / g). The step count equals the
+    accepted steps (the located event steps included)."""
+    model = _scene("drop2b", DROP2, "  duration: 0.2022\n  tolerance: 1.0e-8\n  max_step: 0.5\n",
+                   "{sway: false}")
+    mech = Mechanism(model, parse(model))
+    L0 = mech.L0_ref
+    init = {"q": np.array([10.0 - L0[0] + 0.2, 10.0 - L0[1] + 0.2005]), "v": np.zeros(2)}
+    ref, steps0 = _run(model, initial=init)
+    ends0 = [b for _, b in steps0]
+    np.testing.assert_allclose(ends0[:9], 2.022e-4 * (2.0 ** np.arange(1, 10) - 1), rtol=1e-12)
+    assert ref.steps == len(steps0)
+    # calls 1-9: the accepted steps, 10: the crossing step, 11: the search's first trial
+    res, steps = _run(model, _failing({11}), initial=init)
+    ends = [b for _, b in steps]
+    assert ends[:9] == ends0[:9]
+    assert ends[9] == pytest.approx(ends0[8] + 0.25 * (0.2022 - ends0[8]), abs=1e-12)
+    assert res.rejected == ref.rejected + 1 and res.steps == len(steps)
+    for r in (ref, res):
+        assert [w for _, w in r.events] == ["rope r1 taut", "rope r2 taut"]
+        np.testing.assert_allclose([t for t, _ in r.events],
+                                   [math.sqrt(0.4 / G), math.sqrt(0.401 / G)], atol=1e-9)
