@@ -492,3 +492,26 @@ def test_a_failed_trial_of_the_event_search_quarters_the_step():
         assert [w for _, w in r.events] == ["rope r1 taut", "rope r2 taut"]
         np.testing.assert_allclose([t for t, _ in r.events],
                                    [math.sqrt(0.4 / G), math.sqrt(0.401 / G)], atol=1e-9)
+
+
+def test_progress_timings_and_the_failed_result():
+    """progress(t, T) after every accepted step (the free fall's 14 ends); the timings'
+    parts (setup, integrate, results, total: wall seconds of this run, total their
+    sum); a failed run's result carries the error's message and its own timings."""
+    model = _scene("free", TROLLEY, FREE)
+    calls = []
+    res, steps = _run(model, initial=FREE_INITIAL, progress=lambda t, T: calls.append((t, T)))
+    assert calls == [(b, 1.0) for _, b in steps]
+    tm = res.timings
+    assert set(tm) == {"setup", "integrate", "results", "total"}
+    assert all(0 <= tm[k] < 600 for k in tm)
+    assert tm["total"] == pytest.approx(tm["setup"] + tm["integrate"] + tm["results"],
+                                        abs=1e-3)
+    with pytest.raises(AnalysisError) as exc:
+        _run(model, _failing("all"), initial=FREE_INITIAL)
+    r = exc.value.result
+    assert r.status == 1 and r.message == str(exc.value)
+    assert set(r.timings) >= {"setup", "integrate", "total"}
+    assert all(0 <= r.timings[k] < 600 for k in ("setup", "integrate", "total"))
+    assert r.timings["total"] == pytest.approx(r.timings["setup"] + r.timings["integrate"],
+                                               abs=1e-3)
