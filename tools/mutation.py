@@ -169,10 +169,6 @@ PRESETS = {
     # energies, powers) by hand on small scenes, no integration (~0.5 s)
     "mechanism": ("cranefe/analysis/operation/mechanism.py",
                   ["tests/test_mutation_kills_mechanism.py"]),
-    # the numpy stepper (fast=False): one trapezoidal step and its error estimate by
-    # hand, the step controller, events at free-fall times, runs against scipy (~4 s)
-    "integrate": ("cranefe/analysis/operation/integrate.py",
-                  ["tests/test_mutation_kills_integrate.py"]),
     # damping_exact: fast kill tests only (the analyses of test_values/test_damping ran
     # minutes per mutant; that set is damping_exact_broad): a 3-DOF chain against mpmath,
     # repeated/overdamped/massless cases and the eigen-search's parts by closed forms
@@ -273,6 +269,14 @@ PRESETS = {
     # closed forms (operation engine without numba: its compilation costs a minute)
     "loads_runs": ("cranefe/analysis/loads/runs.py",
                    ["tests/test_mutation_kills_loads_runs.py"]),
+    # the numpy stepper (fast=False): one trapezoidal step and its error estimate by
+    # hand, the step controller, events at free-fall times, runs against scipy; the
+    # main loop's exact step sequences (free fall, constant acceleration: every step
+    # error-free, so the sequence follows from the rules), injected Newton/error
+    # failures, a pendulum on a moving trolley (joint coordinate, kinks) (33 tests, 5 s CPU)
+    "integrate": ("cranefe/analysis/operation/integrate.py",
+                  ["tests/test_mutation_kills_integrate.py",
+                   "tests/test_mutation_kills_integrate_loop.py"]),
 }
 
 
