@@ -16,14 +16,21 @@ import math
 import numpy as np
 import pytest
 import scipy.linalg as sla
+from test_damping import HOIST, chain_text
+from test_mutation_kills_modal import BEAM
 
-from cranefe.analysis.damping import ERROR_TOL, KAPPA
-from cranefe.analysis.damping import damping, first_modes, partner_modes, scene_method
+from cranefe import cases
+from cranefe.analysis.damping import (
+    ERROR_TOL,
+    KAPPA,
+    damping,
+    first_modes,
+    partner_modes,
+    scene_method,
+)
 from cranefe.errors import ModelError
 from cranefe.model import load
 from cranefe.system import assemble
-
-from test_damping import HOIST, chain_text
 
 PAIR = """cranefe: 1
 plane: xz
@@ -283,10 +290,161 @@ def test_warnings_of_undamped_and_overdamped_models():
     assert r.zeta[0] == pytest.approx(20 / (4 * math.pi), rel=1e-12)
     assert r.log_decrement[0] == np.inf
     assert r.warnings[0] == "decoupled estimate overdamped (zeta >= 1) for mode(s) 1"
-    r = damping(load("c.yaml", chain_text([1.0e4], [100.0], [4 * math.pi])), method="modal")
-    assert r.zeta[0] == pytest.approx(1.0, rel=1e-12)
-    assert any(w.startswith("decoupled estimate overdamped") for w in r.warnings) == \
-        (r.zeta[0] >= 1)
+    # uniform psi: zeta = psi / (4 pi) in every mode, both overdamped
+    r = damping(load("c.yaml", chain_text([1.0e4] * 2, [100.0] * 2, [40.0] * 2)), "modal")
+    np.testing.assert_allclose(r.zeta, 40 / (4 * math.pi), rtol=1e-10)
+    assert r.warnings[0] == "decoupled estimate overdamped (zeta >= 1) for mode(s) 1, 2"
+    # psi c = 0.5 < 1 is still an absorption: no warning
+    r = damping(load("c.yaml", chain_text([1.0], [1.0], [0.5])), method="auto")
+    assert r.warnings == [] and r.zeta[0] == pytest.approx(0.5 / (4 * math.pi), rel=1e-12)
+    # method exact with nothing absorbing: the exact arrays are the (exact) zeros
+    r = damping(load("c.yaml", chain_text([1.0e4], [100.0], [0.0])), method="exact")
+    np.testing.assert_array_equal(r.exact_zeta, [0.0])
+    np.testing.assert_array_equal(r.hysteretic_zeta, [0.0])
+    np.testing.assert_allclose(r.exact_damped_omega, [10.0], rtol=1e-12)
+    # an inextensible rope with psi = 0: nothing absorbs, and nothing claims to
+    with open(HOIST) as f:
+        text = f.read().replace("psi: 0.20", "psi: 0.0") + "effects: {rope_elasticity: false}\n"
+    assert "psi: 0.0" in text
+    r = damping(load("x.yaml", text), method="auto")
+    assert r.warnings == [NO_PSI]
+
+
+NO_PSI = ("no element has an absorption coefficient psi > 0: every damping ratio is zero "
+          "(give psi on ropes, springs or members)")
+
+
+def test_two_inextensible_ropes_with_psi_are_named():
+    """cases.double_pendulum with psi on both ropes, rope_elasticity: false."""
+    text = cases.double_pendulum()[0].replace("EA: 5.0e7,", "EA: 5.0e7, psi: 0.1,")
+    assert text.count("psi: 0.1") == 2
+    r = damping(load("d.yaml", text + "effects: {rope_elasticity: false}\n"), "auto")
+    assert r.warnings == ["rope lower, rope upper: psi > 0 but inextensible here "
+                          "(rope_elasticity: false), so no element that deforms absorbs "
+                          "energy: every damping ratio is zero"]
+
+
+def test_beam_absorption_counts():
+    """A cantilever beam (tests/test_mutation_kills_modal.py BEAM) whose member carries
+    psi = 0.3: no warning, zeta = psi / (4 pi) in every mode (K_psi = psi K); with
+    psi = 0 on the member the no-absorption warning."""
+    r = damping(load("beam.yaml", BEAM), method="modal")
+    assert r.warnings == []
+    np.testing.assert_allclose(r.zeta, 0.3 / (4 * math.pi), rtol=1e-9)
+    r = damping(load("beam.yaml", BEAM.replace("psi: 0.3", "psi: 0.0")), method="modal")
+    assert r.warnings == [NO_PSI]
+
+
+def test_model_with_only_a_rigid_mode():
+    """Free drum, inextensible rope, no sway: one rigid mode, no elastic one."""
+    with open(HOIST) as f:
+        text = f.read() + "effects: {rope_elasticity: false, sway: false}\n"
+    r = damping(load("x.yaml", text), method="both")
+    assert list(r.rigid) == [True] and r.omega[0] == 0.0
+    assert r.dominant_element == ("",) and list(r.dominant_share) == [0.0]
+    assert list(r.coupled_with) == [-1] and r.exact_zeta.tolist() == [0.0]
+
+
+def test_timings_are_durations_and_modal_warnings_are_kept():
+    """Each timing lies between 0 and the wall time of the call; the warnings of the
+    modes passed in come first."""
+    import time
+    from dataclasses import replace
+    model = load("pair.yaml", PAIR.format(**LOOSE))
+    s = assemble(model)
+    modal, _ = partner_modes(model, s)
+    t0 = time.perf_counter()
+    r = damping(model, "auto", system=s, modal=replace(modal, warnings=["from modes"]))
+    wall = time.perf_counter() - t0
+    assert set(r.timings) == {"assemble", "modes", "decoupled", "exact_viscous",
+                              "hysteretic"}
+    assert all(0 <= v <= wall for v in r.timings.values()), r.timings
+    assert r.warnings[0] == "from modes" and len(r.warnings) == 2
+
+
+def test_dominant_element_of_each_mode_of_the_loose_pair():
+    """Shares psi k (elongation)^2 of springs a (A to ground) and b (B to ground); the
+    coupling spring c has psi 0. Mode 1 moves mostly A (a dominates), mode 2 B (b)."""
+    K, M, P = pair_matrices(**LOOSE)
+    w, V, H, zeta, eps, _ = decoupled(K, M, P)
+    r = damping(pair(**LOOSE), method="modal")
+    parts = np.array([LOOSE["pa"] * LOOSE["ka"] * V[0]**2, LOOSE["pb"] * LOOSE["kb"] * V[1]**2])
+    assert r.dominant_element == ("spring a", "spring b")
+    np.testing.assert_allclose(r.dominant_share, parts.max(axis=0) / parts.sum(axis=0),
+                               rtol=1e-9)
+
+
+def test_undamped_mode_has_no_partner():
+    """The weak chain and, apart from it, a mass of 10 kg on a spring of 3000 N/m with no
+    psi (w = sqrt(300) = 17.3 rad/s, mode 3): its H row is zero, so coupling 0 and no
+    partner, while modes 1 and 2 are each other's partners."""
+    text = chain_text(*WEAK).replace("N1: [2, 0, 0]}", "N1: [2, 0, 0], X: [10, 0, 0]}")
+    text = text.replace("masses: {", "masses: {X: 10, ").replace(
+        "effects:", "  - {name: x, type: axial, nodes: [G, X], stiffness: 3000, psi: 0}\n"
+        "effects:")
+    r = damping(load("c.yaml", text), method="modal")
+    assert r.omega[2] == pytest.approx(math.sqrt(300.0), rel=1e-12)
+    assert list(r.coupled_with) == [1, 0, -1] and r.coupling[2] == 0.0
+    assert r.to_dict()["modes"][2]["coupled_with"] is None
+
+
+# three oscillators A, B, C on ground springs a, b, c (B's from the same ground node as
+# A's, all along x), coupled by springs ab and bc without psi
+TRI = """cranefe: 1
+plane: xz
+gravity: [0, 0, 0]
+nodes: {{G1: [0, 0, 0], A: [1, 0, 0], B: [2, 0, 0], C: [3, 0, 0], G2: [4, 0, 0]}}
+ground: [G1, G2]
+masses: {{A: 100, B: 100, C: 100}}
+springs:
+  - {{name: a, type: axial, nodes: [G1, A], stiffness: {ka}, psi: {pa}}}
+  - {{name: b, type: axial, nodes: [G1, B], stiffness: {kb}, psi: {pb}}}
+  - {{name: c, type: axial, nodes: [C, G2], stiffness: {kc}, psi: {pc}}}
+  - {{name: ab, type: axial, nodes: [A, B], stiffness: 50.0, psi: 0.0}}
+  - {{name: bc, type: axial, nodes: [B, C], stiffness: 50.0, psi: 0.0}}
+effects: {{sway: false}}
+"""
+
+
+def tri_matrices(ka, pa, kb, pb, kc, pc):
+    K = np.array([[ka + 50.0, -50.0, 0], [-50.0, kb + 100.0, -50.0], [0, -50.0, kc + 50.0]])
+    return K, np.diag([100.0] * 3), np.diag([pa * ka, pb * kb, pc * kc])
+
+
+def test_three_close_oscillators_fail_in_three_pairs():
+    """1e4, 1.005e4, 1.01e4 N/m, the middle one heavily absorbing: every pair's eps by
+    hand >= KAPPA, listed in order with its coupling."""
+    kw = dict(ka=1.0e4, pa=0.1, kb=1.005e4, pb=3.0, kc=1.01e4, pc=0.1)
+    eps = decoupled(*tri_matrices(**kw))[4]
+    assert (eps[np.triu_indices(3, 1)] >= KAPPA).all()
+    r = damping(load("t.yaml", TRI.format(**kw)), method="modal")
+    np.testing.assert_allclose(r.coupling_matrix, eps, rtol=1e-8)
+    assert r.warnings == [
+        "Hasselman's weak-coupling criterion fails (coupling >= 0.1) for modes "
+        f"1-2 ({eps[0, 1]:.2g}), 1-3 ({eps[0, 2]:.2g}), 2-3 ({eps[1, 2]:.2g}): their "
+        "decoupled damping ratios are not reliable; use --method exact"]
+
+
+def test_two_light_modes_beside_a_heavy_one_are_solved_exactly():
+    """1e4 (psi 0.01), 1.2e4 (psi 3), 1.44e4 (psi 0.01): weakly coupled, but modes 1 and
+    3 are estimated 18 % and 9 % too high (the state space, by hand); auto solves those
+    two only (1e-9 of the state space), and the warning lists both."""
+    kw = dict(ka=1.0e4, pa=0.01, kb=1.2e4, pb=3.0, kc=1.44e4, pc=0.01)
+    K, M, P = tri_matrices(**kw)
+    w, V, H, zeta, eps, _ = decoupled(K, M, P)
+    v, h = exact_roots(K, M, P, w, V)
+    r = damping(load("t.yaml", TRI.format(**kw)), method="auto")
+    err = zeta / v[:, 0] - 1
+    assert err[0] > 0.15 and err[2] > 0.05 and abs(err[1]) < 0.01
+    assert r.criterion_holds.all() and list(r.trusted) == [False, True, False]
+    np.testing.assert_allclose(r.exact_zeta[[0, 2]], v[[0, 2], 0], rtol=1e-9)
+    np.testing.assert_allclose(r.hysteretic_zeta[[0, 2]], h[[0, 2], 0], rtol=1e-9)
+    assert np.isnan(r.exact_zeta[1]) and np.isnan(r.hysteretic_zeta[1])
+    e = r.predicted_error
+    assert r.warnings == [
+        "weakly coupled, but the predicted error of the decoupled damping ratio exceeds "
+        f"2 % for mode(s) 1 ({100 * e[0]:+.1f} %), 3 ({100 * e[2]:+.1f} %); they are "
+        "solved exactly"]
 
 
 def test_partner_beyond_the_reported_modes_is_named():
@@ -355,10 +513,34 @@ def test_partner_modes_sparse_doubles_until_twice_the_frequency(monkeypatch):
     s = assemble(model)
     monkeypatch.setattr(modal_mod, "SMALL", 0)
     monkeypatch.setattr(condense, "DENSE_MAX", 0)
-    for count, kept, shown in ((6, 18, 6), (2, 6, 2), (None, 18, 10)):
+    # count 4: w_8 = sin(15 pi / 82) = 0.552 >= 2 w_4 = 0.530 > w_7 = 0.483: 8 modes;
+    # count 5: w_9 = 0.606 < 2 w_5 = 0.680 (> 2 w_4): doubled to 18;
+    # count 13: k = 17 (= n - 3), 2 w_13 > w_20: doubled, capped at 18
+    for count, kept, shown in ((6, 18, 6), (2, 6, 2), (None, 18, 10), (4, 8, 4),
+                               (5, 18, 5), (13, 18, 13)):
         modal, m = partner_modes(model, s, count)
         assert (len(modal.omega), m) == (kept, shown), count
         np.testing.assert_allclose(modal.omega, w[:kept], rtol=1e-8)
+    # 40 masses, count 5: w_9 = sin(17 pi / 162) = 0.325 < 2 w_5 = 0.347, then 18 modes
+    # (w_18 = 0.625): doubling, not tripling
+    model, w = _uniform(40)
+    modal, m = partner_modes(model, assemble(model), 5)
+    assert (len(modal.omega), m) == (18, 5)
+    np.testing.assert_allclose(modal.omega, w[:18], rtol=1e-8)
+
+
+def test_partner_modes_without_a_count_are_all_modes_up_to_the_dense_limit(monkeypatch):
+    """No count: every mode (dense) while n <= the dense limit of cranefe.condense, even
+    above SMALL; at the limit itself (20 = n) too."""
+    import cranefe.analysis.modal as modal_mod
+    import cranefe.condense as condense
+    model, w = _uniform(20)
+    s = assemble(model)
+    monkeypatch.setattr(modal_mod, "SMALL", 0)
+    assert partner_modes(model, s)[1] == 20
+    monkeypatch.setattr(condense, "DENSE_MAX", 20)
+    modal, m = partner_modes(model, s)
+    assert (len(modal.omega), m) == (20, 20)
 
 
 def test_first_modes_cuts_every_per_mode_field():
