@@ -162,7 +162,8 @@ def test_every_key_given(tmp_path):
 def test_drives(tmp_path):
     t = parsed(tmp_path, "drums: {hoist: {torque: 10200, ramp: 0.2}}")
     (d,) = t.drums
-    assert d.kind == "torque" and d.profile.times.tolist() == [0.0, 0.2]
+    assert (d.drum, d.name, d.kind, d.motor) == (0, "hoist", "torque", None)
+    assert d.profile.times.tolist() == [0.0, 0.2]
     assert d.profile.values.tolist() == [[0.0], [10200.0]]
     d = parsed(tmp_path, "drums: {hoist: {speed: [[0, 0], [1, 3]]}}").drums[0]
     assert d.kind == "speed" and d.profile.values.tolist() == [[0.0], [3.0]]
@@ -170,8 +171,18 @@ def test_drives(tmp_path):
     assert d.profile.times.tolist() == [0.0] and d.profile.values.tolist() == [[2.0]]
     d = parsed(tmp_path, "drums: {hoist: {motor: {stall_torque: 480, "
                "synchronous_speed: 157}}}").drums[0]
-    assert (d.kind, d.profile, d.motor) == ("motor", None, Motor("linear", 157.0,
-                                                                 stall_torque=480.0))
+    assert (d.drum, d.name, d.kind, d.profile, d.motor) == (
+        0, "hoist", "motor", None, Motor("linear", 157.0, stall_torque=480.0))
+    # the second of two drums: its index in model.drums
+    two = HOIST.replace("  hoist: {node: D, radius: 0.25, inertia: 500.0}",
+                        "  aux: {node: D, radius: 0.2, inertia: 10.0}\n"
+                        "  hoist: {node: D, radius: 0.25, inertia: 500.0}")
+    assert two != HOIST
+    for drive in ("speed: 1", "torque: 2", "motor: {stall_torque: 1, synchronous_speed: 2}"):
+        d = parsed(tmp_path, f"drums: {{hoist: {{{drive}}}}}", model=two).drums[0]
+        assert (d.drum, d.name) == (1, "hoist"), drive
+    assert error(tmp_path, "drums: {winch: {speed: 1}}", model=two) == (
+        "analysis.drums.winch", "unknown drum 'winch'; drums of the model: aux, hoist")
     d = parsed(tmp_path, "drums: {hoist: {motor: {breakdown_torque: 480, "
                "breakdown_slip: 0.3, synchronous_speed: 157}}}").drums[0]
     assert d.motor == Motor("kloss", 157.0, breakdown_torque=480.0, breakdown_slip=0.3)
@@ -292,6 +303,9 @@ ERRORS = [
      "analysis.drums.hoist.motor.characteristic", None),
     ("drums: {hoist: {motor: {characteristic: [[0, 1], [2]]}}}",
      "analysis.drums.hoist.motor.characteristic[1]", None),
+    ("drums: {hoist: {motor: {characteristic: [[0, 1], [0, 2]]}}}",
+     "analysis.drums.hoist.motor.characteristic",
+     "the speeds (first column) must increase"),
     ("drums: {hoist: {motor: {characteristic: [[1, 1], [0, 2]]}}}",
      "analysis.drums.hoist.motor.characteristic",
      "the speeds (first column) must increase"),
