@@ -749,15 +749,21 @@ def test_scene_errors_that_depend_on_the_model(tmp_path):
     model, path = scene(tmp_path, BASE.replace("type: luffing", "type: transient"))
     with pytest.raises(ModelError) as e:
         an.read_scene(model)
-    assert (str(e.value.file), e.value.entry) == (model.file, "analysis")
+    assert (str(e.value.file), e.value.entry) == (path, "analysis")
     assert e.value.message.startswith("needs a scene with 'analysis: {type: luffing, boom:")
     assert e.value.message.endswith("load: {mass: ..., rope_length: ...}}' (docs/luffing.md)")
     model, path = scene(tmp_path, BASE + ", rest_to_rest_tau: 2.5")
     assert an.read_scene(model).rest_to_rest_tau == 2.5
+    # without a file given, the scene file is named (the entries are the scene's; the
+    # sweeps call law_figures(model, ...) so; before 2026-11-24 the model file was named)
     model, path = scene(tmp_path, BASE.replace("t_k: 10", "t_k: -1"))
     with pytest.raises(ModelError) as e:
         an.read_scene(model)
-    assert str(e.value.file) == model.file
+    assert str(e.value.file) == path != model.file
+    model, path = scene(tmp_path, BASE.replace("alphak_deg: 50", "reachk: 15"))
+    with pytest.raises(ModelError) as e:
+        an.law_figures(model, ["linear"])
+    assert (str(e.value.file), e.value.entry) == (path, "analysis.reachk")
 
 
 def test_linkage_errors(tmp_path):
@@ -784,7 +790,11 @@ def test_linkage_errors(tmp_path):
         assert (e.value.file, e.value.entry, e.value.message) == ("s.yaml", entry, message)
     with pytest.raises(ModelError) as e:
         an.Luffing(_model(), replace(SCENE, jib_tip="Z"))
-    assert e.value.file == _model().file
+    assert e.value.file == _model().file          # a model without a scene: its file
+    model, path = scene(tmp_path)
+    with pytest.raises(ModelError) as e:
+        an.Luffing(model, replace(SCENE, jib_tip="Z"))
+    assert (str(e.value.file), e.value.entry) == (path, "analysis.jib_tip")
     with pytest.raises(ModelError) as e:
         an.Luffing(_model(), replace(SCENE, start=("alpha", math.radians(-100), "alpha0_deg")),
                    "s.yaml")
