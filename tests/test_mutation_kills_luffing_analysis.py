@@ -511,12 +511,50 @@ def test_analyse_without_reports_and_a_failed_swing_free_law(tmp_path, monkeypat
     monkeypatch.setattr(sway, "swing_free_law", FakeSwingFree(status=2))
     fast_sway(monkeypatch)
     model, path = analysed_scene(tmp_path, monkeypatch)
-    r = an.analyse(model, path, collocation=False, sensitivity=False, samples=21)
+    r = an.analyse(model, path, collocation=False, sensitivity=False)
     assert r.collocation == {} and r.sensitivity == {}
     assert list(r.timings) == ["kinematics", "laws", "total"]
     assert r.warnings == ["swing-free law: solve_bvp stand-in message"]
     assert r.optimum["swing_free_status"] == 2
-    assert r.t.shape == (21,)
+    assert r.t.shape == (801,) and r.alpha.shape == (9, 801)        # the default
+    doc = r.to_dict()
+    assert (doc["alpha0_rad"], doc["alphak_rad"], doc["t_k_s"]) == (r.alpha0, r.alphak, TK)
+
+
+def test_analyse_with_the_papers_inertia(tmp_path, monkeypatch, fake):
+    """inertia: paper: the optimum is Jp's (T = S_p^2 / (2 t_k^2)), the 'paper law' is
+    then the complete optimum (T = S^2 / (2 t_k^2), its Jp energy S / (2 t_k^2) int Jp /
+    sqrt(J)), and the ratio reported is J / Jp."""
+    fast_sway(monkeypatch)
+    model, path = scene(tmp_path)
+    monkeypatch.setattr(an, "read_scene", lambda model, file=None: replace(
+        SCENE, inertia="paper"))
+    r = an.analyse(model, path, collocation=False, sensitivity=False, samples=21)
+    o, S = r.optimum, S_of("J")
+    assert o["inertia"] == "paper" and r.inertia == "paper"
+    assert o["T_mean_J"] == pytest.approx(T_opt("Jp"), rel=1e-10)
+    assert o["T_mean_paper_J"] == pytest.approx(T_opt("J"), rel=1e-10)
+    Tpl = S / (2 * TK**2) * _int(lambda a: hand(a)["Jp"] / math.sqrt(hand(a)["J"]), A0, AK)
+    assert o["T_mean_of_paper_law_J"] == pytest.approx(Tpl, rel=1e-9)
+    hg = hand(np.linspace(A0, AK, 241))
+    ratio = hg["J"] / hg["Jp"]
+    assert o["J_paper_over_complete"] == pytest.approx([ratio.min(), ratio.max()], rel=1e-12)
+    assert fake.calls[0]["which"] == "paper"
+
+
+def test_analyse_reads_the_scene(tmp_path):
+    """analyse's own read_scene and Luffing (no stand-ins): a bad key and a jib tip on no
+    body fail at once with the scene file and the entry, with and without a file."""
+    for change, entry in ((("t_k: 10", "t_k: -1"), "analysis.t_k"),
+                          (("jib_tip: D", "jib_tip: Z"), "analysis.jib_tip")):
+        model, path = scene(tmp_path, BASE.replace(*change))
+        for file in (path, None):
+            with pytest.raises(ModelError) as e:
+                an.analyse(model, file)
+            assert (str(e.value.file), e.value.entry) == (path, entry)
+        with pytest.raises(ModelError) as e:
+            an.analyse(model, "given.yaml")
+        assert (e.value.file, e.value.entry) == ("given.yaml", entry)
 
 
 def test_law_figures_of_a_sweep(tmp_path, monkeypatch, fake):
@@ -528,9 +566,32 @@ def test_law_figures_of_a_sweep(tmp_path, monkeypatch, fake):
                                                      rel=1e-9)
     assert figs["linear"]["speed_jump_rad_s"] == pytest.approx((AK - A0) / TK, rel=1e-12)
     assert fake.calls == []
+    # the default: 801 samples (the peak power, inside the range, is a maximum over them)
+    figs = an.law_figures(model, ["cubic"])
+    peaks = []
+    for n in (801, 802):
+        u = np.linspace(0, 1, n)
+        D = AK - A0
+        al, d1, d2 = A0 + D * (3 * u**2 - 2 * u**3), D * (6 * u - 6 * u**2), D * (6 - 12 * u)
+        h = hand(al)
+        Q = (h["J"] * d2 + 0.5 * h["dJ"] * d1**2) / TK**2 + h["dV"]
+        peaks.append(np.abs(Q * d1 / TK).max())
+    assert abs(peaks[1] / peaks[0] - 1) > 1e-9
+    assert figs["cubic"]["peak_power_W"] == pytest.approx(peaks[0], rel=1e-11)
 
 
 # ------------------------------------------------------------------ the reports
+
+def _same(a, b):
+    """Equal dicts, NaN equal to NaN and arrays compared element-wise."""
+    if set(a) != set(b):
+        return False
+    return all(np.array_equal(np.asarray(a[k], dtype=object if a[k] is None else None),
+                              np.asarray(b[k], dtype=object if b[k] is None else None),
+                              equal_nan=a[k] is not None and np.asarray(a[k]).dtype.kind
+                              in "fc")
+               for k in a)
+
 
 def test_convergence_rate_by_hand():
     """error = 3 * 0.1^n: geometric ratio 0.1 (1 digit a point); error = 5 n^-3: order
@@ -544,6 +605,9 @@ def test_convergence_rate_by_hand():
     assert r["algebraic_order"] == pytest.approx(3.0, rel=1e-9)
     assert an.convergence_rate([{"n": 2, "error_rad": 1e-3}, {"n": 3, "error_rad": 1e-12}]) \
         == {"geometric_ratio": None, "algebraic_order": None}
+    r = an.convergence_rate([{"n": 2, "error_rad": 1e-3}, {"n": 3, "error_rad": 1e-4}])
+    assert r["geometric_ratio"] == pytest.approx(0.1, rel=1e-12)
+    assert r["algebraic_order"] == pytest.approx(math.log(10) / math.log(1.5), rel=1e-12)
 
 
 def test_collocation_report_of_the_parallelogram(tmp_path):
@@ -561,6 +625,40 @@ def test_collocation_report_of_the_parallelogram(tmp_path):
         assert rep[kind][0]["error_rad"] > rep[kind][-1]["error_rad"]
         assert rep[kind + "_rate"]["geometric_ratio"] < 1
     assert rep["solve_bvp"]["tol"] == 1e-8 and rep["solve_bvp"]["error_rad"] < 1e-6
+    # the report's entries are those of the solvers (value-tested in their own kill
+    # tests) called with f = J'/(2J) of the scene's inertia, each variant its own
+    from cranefe.analysis.luffing import optimum as opt
+    f = lambda x: lf.proxy.f(x, "complete")                    # noqa: E731
+    for variant in ("printed", "eq21", "corrected"):
+        sol = opt.paper_collocation(f, A0, AK, variant)
+        info = sol.info
+        want = {"status": sol.status, "message": sol.message, "iterations": sol.iterations,
+                "spectral_radius": info.get("spectral_radius"),
+                "eigenvalues": info.get("eigenvalues"), "relax_best": info.get("relax_best"),
+                "spectral_radius_best": info.get("spectral_radius_best"),
+                "fixed_point": info["fixed_point"],
+                "error_rad": opt.law_error(sol, exact) if info["fixed_point_found"] else None}
+        assert _same(rep["paper"][variant], want), variant
+    best = rep["paper"]["corrected"]["relax_best"]
+    if best is None:
+        assert set(rep["paper"]) == {"printed", "eq21", "corrected"}
+    else:
+        sol = opt.paper_collocation(f, A0, AK, "corrected", relax=best)
+        assert _same(rep["paper"]["corrected_relaxed"], {
+            "status": sol.status, "message": sol.message, "iterations": sol.iterations,
+            "relax": best, "error_rad": opt.law_error(sol, exact)})
+    assert not _same(rep["paper"]["printed"], rep["paper"]["corrected"])
+    for kind, points in (("equally_spaced", opt.equally_spaced),
+                         ("chebyshev", opt.chebyshev_points)):
+        for row in rep[kind]:
+            sol = opt.collocation(f, A0, AK, points(row["n"]),
+                                  df=lambda x: an._df(lf, x, "complete"))
+            assert row == {"n": row["n"], "error_rad": opt.law_error(sol, exact),
+                           "status": sol.status, "iterations": sol.iterations}
+        assert rep[kind + "_rate"] == an.convergence_rate(rep[kind])
+    sol = opt.bvp(f, A0, AK, tol=1e-8)
+    assert rep["solve_bvp"] == {"tol": 1e-8, "error_rad": opt.law_error(sol, exact),
+                                "nodes": sol.info["nodes"], "status": sol.status}
     # the derivative of f = J'/(2J) given to the collocation's Newton, by hand:
     # f' = (J''/J - J'^2/J^2) / 2, J'' by a central difference of the hand J' (1e-6)
     a = np.array([0.3, 0.6])
@@ -569,6 +667,9 @@ def test_collocation_report_of_the_parallelogram(tmp_path):
     h = hand(a)
     np.testing.assert_allclose(an._df(lf, a, "complete"),
                                0.5 * (ddJ / h["J"] - h["dJ"]**2 / h["J"]**2), rtol=1e-5)
+    # paper: Jp = J - 500 L^2, the same derivatives
+    np.testing.assert_allclose(an._df(lf, a, "paper"),
+                               0.5 * (ddJ / h["Jp"] - h["dJ"]**2 / h["Jp"]**2), rtol=1e-5)
 
 
 def test_sensitivity_report_rows(tmp_path, monkeypatch):
@@ -649,6 +750,8 @@ def test_scene_defaults_and_ends(tmp_path):
     sc = an.read_scene(model, path)
     assert sc.start == ("alpha", 0.5, "alpha0") and sc.end == ("reach", 12.0, "reachk")
     assert sc.rest_to_rest_tau == 2.5 and sc.drive == "luffing"
+    model, path = scene(tmp_path, BASE + ", inertia: paper")
+    assert an.read_scene(model, path).inertia == "paper"
 
 
 def test_reach_is_turned_into_the_boom_angle():
@@ -705,6 +808,11 @@ SCENE_ERRORS = [
      "well below t_k"),
     (("t_k: 10", "t_k: 10, rest_to_rest_tau: 0"), "analysis.rest_to_rest_tau", None),
     (("type: luffing", "type: luffing, tip: B"), None, None),
+    (("boom: boom, ", ""), "analysis", None),
+    (("alpha0_deg: 10", "alpha0: 3.141592653589793"), "analysis.alpha0",
+     "3.14159 rad is not a boom angle in (-pi, pi)"),
+    (("alpha0_deg: 10", "alpha0: -3.141592653589793"), "analysis.alpha0",
+     "-3.14159 rad is not a boom angle in (-pi, pi)"),
 ]
 
 
@@ -750,8 +858,10 @@ def test_scene_errors_that_depend_on_the_model(tmp_path):
     with pytest.raises(ModelError) as e:
         an.read_scene(model)
     assert (str(e.value.file), e.value.entry) == (path, "analysis")
-    assert e.value.message.startswith("needs a scene with 'analysis: {type: luffing, boom:")
-    assert e.value.message.endswith("load: {mass: ..., rope_length: ...}}' (docs/luffing.md)")
+    assert e.value.message == (
+        "needs a scene with 'analysis: {type: luffing, boom: ..., pivot: ..., tip: ..., "
+        "alpha0_deg: ..., alphak_deg: ..., t_k: ..., drive: ..., jib_tip: ..., load: "
+        "{mass: ..., rope_length: ...}}' (docs/luffing.md)")
     model, path = scene(tmp_path, BASE + ", rest_to_rest_tau: 2.5")
     assert an.read_scene(model).rest_to_rest_tau == 2.5
     # without a file given, the scene file is named (the entries are the scene's; the
@@ -764,6 +874,10 @@ def test_scene_errors_that_depend_on_the_model(tmp_path):
     with pytest.raises(ModelError) as e:
         an.law_figures(model, ["linear"])
     assert (str(e.value.file), e.value.entry) == (path, "analysis.reachk")
+    model, path = scene(tmp_path, BASE + ", drive: hoist", extra=two)
+    with pytest.raises(ModelError) as e:
+        an.read_scene(model, path)
+    assert e.value.message == "unknown linear drive 'hoist'; the model has: luffing, other"
 
 
 def test_linkage_errors(tmp_path):
