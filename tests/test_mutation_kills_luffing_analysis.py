@@ -278,6 +278,36 @@ def test_figures_of_the_linear_law_have_speed_jumps(tmp_path):
         standard_mean("linear", "Jp"), rel=1e-9)
 
 
+def test_torque_of_the_sensitivity_rows_by_hand():
+    """_torque: Q / (500 s') at 401 instants (the default) of the cubic law at t_k = 5 s:
+    the J' alpha'^2 / 2 term is not zero inside the range."""
+    lf = luffing()
+    law = standard_law("cubic", A0, AK)
+    u = np.linspace(0, 1, 401)
+    D = AK - A0
+    al, d1, d2 = A0 + D * (3 * u**2 - 2 * u**3), D * (6 * u - 6 * u**2), D * (6 - 12 * u)
+    h = hand(al)
+    Q = (h["J"] * d2 + 0.5 * h["dJ"] * d1**2) / 5.0**2 + h["dV"]
+    np.testing.assert_allclose(an._torque(lf, law, 5.0), Q / (RATIO * h["ds"]), rtol=1e-11)
+    assert np.abs(0.5 * h["dJ"] * d1**2).max() > 1e-3 * np.abs(Q).max()
+
+
+def test_figures_default_samples_and_the_start_of_a_reversed_law():
+    """figures' default: 801 samples. Luffing down (AK to A0) with the linear law: the
+    impulse J D / t_k / |500 s'| at each end, the larger one (at A0, which is now the
+    law's end) reported; together with the linear law up (A0 at its start) each end is
+    the larger once."""
+    lf = luffing()
+    fig, series = lf.figures(standard_law("cubic", A0, AK), T_opt())
+    assert series["alpha"].shape == (801,)
+    D = AK - A0
+    down = standard_law("linear", AK, A0)
+    fig, _ = lf.figures(down, T_opt(), samples=11)
+    ends = [hand(a)["J"] * D / TK / abs(RATIO * hand(a)["ds"]) for a in (A0, AK)]
+    assert ends[0] != pytest.approx(ends[1], rel=1e-3)
+    assert fig["motor_impulse_Nms"] == pytest.approx(max(ends), rel=1e-10)
+
+
 def test_drive_terms_at_three_instants(tmp_path):
     lf = luffing(tmp_path)
     u = np.array([0.0, 0.3, 0.8])
@@ -328,6 +358,10 @@ def test_optimum_with_the_papers_inertia(tmp_path, fake):
     assert laws["optimal_paper"].info["S"] == pytest.approx(S_of("J"), rel=1e-10)
     assert lf.optimal(which="complete").info["S"] == pytest.approx(S_of("J"), rel=1e-10)
     assert laws["rest_to_rest"].info["tau_c_s"] == 2.5
+    want = rest_to_rest_law(lf.proxy, A0, AK, 2.5, TK, "paper").evaluate(0.3)[0]
+    other = rest_to_rest_law(lf.proxy, A0, AK, 2.5, TK, "complete").evaluate(0.3)[0]
+    assert laws["rest_to_rest"].evaluate(0.3)[0] == pytest.approx(want, rel=1e-14)
+    assert abs(want - other) > 1e-6
     assert fake.calls[0]["which"] == "paper"
     fig, _ = lf.figures(standard_law("cubic", A0, AK), T_opt("Jp"), samples=21)
     assert fig["T_mean_J"] == pytest.approx(standard_mean("cubic", "Jp"), rel=1e-9)
@@ -731,7 +765,9 @@ def test_sensitivity_report_rows(tmp_path, monkeypatch):
             math.degrees(ref["residual"]), rel=1e-8)
         assert row["swing_free_energy_excess"] == pytest.approx(
             standard_mean("cycloidal") / T_opt() - 1, rel=1e-9)
-    assert rep["note"].startswith("the optimum of eq. 16 does not depend on the load")
+    assert rep["note"] == ("the optimum of eq. 16 does not depend on the load (its terms "
+                           "cancel with eq. 9); load_mass rows carry the load rigidly at the "
+                           "tip")
     fake.status = 1
     rep = an.sensitivity_report(lf, exact)
     assert all(row["swing_free_energy_excess"] is None
