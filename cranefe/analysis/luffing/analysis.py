@@ -47,7 +47,7 @@ class Scene:
 def read_scene(model, file=None):
     """Validate ``model.analysis`` (the loader leaves a luffing analysis unchecked)."""
     from ...model.load import _Reader
-    file = file or model.file
+    file = file or model.scene_file or model.file
     r = _Reader(file)
     a = model.analysis or {}
     if a.get("type") != "luffing":
@@ -162,7 +162,7 @@ class Luffing:
         from .energy import Proxy, Reduced
         from .kinematics import Linkage
         self.model, self.scene = model, scene
-        file = file or model.file
+        file = file or model.scene_file or model.file
         self.linkage = Linkage(model, scene.boom, scene.pivot, scene.tip, file=file)
         drive = next(d for d in model.linear_drives if d.name == scene.drive)
         for n in drive.nodes:
