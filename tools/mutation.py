@@ -277,6 +277,20 @@ PRESETS = {
     "integrate": ("cranefe/analysis/operation/integrate.py",
                   ["tests/test_mutation_kills_integrate.py",
                    "tests/test_mutation_kills_integrate_loop.py"]),
+    # damping/analysis.py: the damping analysis's switch (modal / exact / both / auto by
+    # Hasselman's coupling and the predicted error), its report, warnings and partner
+    # modes, on 1-40-coordinate models by hand (state space, closed forms; ~2 s)
+    "damping_analysis": ("cranefe/analysis/damping/analysis.py",
+                         ["tests/test_mutation_kills_damping_analysis.py"]),
+    # transient/scene.py: the transient scene's keys, defaults, drives, motors, time
+    # functions and grounded loads, and every error's file/entry/message (parse only, ~1 s)
+    "transient_scene": ("cranefe/analysis/transient/scene.py",
+                        ["tests/test_mutation_kills_transient_scene.py"]),
+    # luffing/analysis.py: a parallelogram linkage written out by hand (J, Jp, dV, the
+    # rack, the tip); the swing-free law and, in analyse, the pendulums and reports are
+    # stand-ins (each has its own kill tests); ~20 s, so run with OPENBLAS_NUM_THREADS=1
+    "luffing_analysis": ("cranefe/analysis/luffing/analysis.py",
+                         ["tests/test_mutation_kills_luffing_analysis.py"]),
 }
 
 
