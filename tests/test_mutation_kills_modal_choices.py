@@ -147,3 +147,54 @@ def test_neutral_mode_labelled_by_its_own_coordinate():
     assert r.omega[1] ** 2 == pytest.approx((3.0e5 - m * G * l) / (Ic + m * l * l),
                                             rel=RTOL)
     assert math.isfinite(r.period_s[1])
+
+
+FREE = """cranefe: 1
+plane: xz
+gravity: [0, 0, 0]
+nodes: {G: [0, 0, 0], A: [1, 0, 0], B: [2, 0, 0], C: [3, 0, 0], N: [20, 0, 0],
+        P: [25, 0, 0]}
+ground: [G]
+supports: {A: [uz], B: [uz], C: [uz]}
+masses: {A: 2.0, B: 2.0, C: 2.0}
+bodies:
+  f: {mass: 5.0, com: [20, 0, 0], inertia: 1.0, nodes: [N]}
+  g: {mass: 3.0, com: [25, 0, 0], inertia: 1.0, nodes: [P]}
+joints:
+  - {type: slider, bodies: [ground, f], at: N, axis: [1, 0, 0]}
+  - {type: slider, bodies: [ground, g], at: P, axis: [1, 0, 0]}
+springs:
+  - {name: a, type: axial, nodes: [G, A], stiffness: 100.0}
+  - {name: b, type: axial, nodes: [A, B], stiffness: 100.0}
+  - {name: c, type: axial, nodes: [B, C], stiffness: 100.0}
+"""
+
+FREE3 = """cranefe: 1
+plane: xz
+gravity: [0, 0, 0]
+nodes: {N: [0, 0, 0], P: [5, 0, 0], Q: [10, 0, 0]}
+bodies:
+  f: {mass: 5.0, com: [0, 0, 0], inertia: 1.0, nodes: [N]}
+  g: {mass: 3.0, com: [5, 0, 0], inertia: 1.0, nodes: [P]}
+  h: {mass: 2.0, com: [10, 0, 0], inertia: 1.0, nodes: [Q]}
+joints:
+  - {type: slider, bodies: [ground, f], at: N, axis: [1, 0, 0]}
+  - {type: slider, bodies: [ground, g], at: P, axis: [1, 0, 0]}
+  - {type: slider, bodies: [ground, h], at: Q, axis: [1, 0, 0]}
+"""
+
+
+def test_sparse_with_coordinates_that_no_element_holds():
+    # Two bodies on sliders that nothing holds (K_ii = 0: rigid, 0 Hz) beside a
+    # fixed-free chain of 3 masses 2 kg on 100 N/m springs along x. The sparse shift
+    # comes from the positive K_ii / M_ii only (a zero one would make K - sigma M
+    # singular): 2 rigid modes, then the chain's lowest (closed form, SPARSE).
+    r = modes(load("free.yaml", FREE), solver="sparse", count=3)
+    assert r.solver == "sparse" and r.rigid.tolist() == [True, True, False]
+    assert r.omega[:2].tolist() == [0.0, 0.0]
+    assert r.omega[2] == pytest.approx(fixed_free(3, 100.0, 2.0)[0], rel=SPARSE)
+    # without the chain nothing is held at all: every K_ii = 0, the shift falls back
+    # to -1e-3 s^-2; two of the three bodies' rigid modes
+    r = modes(load("free3.yaml", FREE3), solver="sparse", count=2)
+    assert r.solver == "sparse" and r.rigid.tolist() == [True, True]
+    assert r.omega.tolist() == [0.0, 0.0]
