@@ -198,3 +198,42 @@ def test_sparse_with_coordinates_that_no_element_holds():
     r = modes(load("free3.yaml", FREE3), solver="sparse", count=2)
     assert r.solver == "sparse" and r.rigid.tolist() == [True, True]
     assert r.omega.tolist() == [0.0, 0.0]
+    # dense: every coordinate rigid, nothing left to solve after the condensation
+    r = modes(load("free3.yaml", FREE3))
+    assert r.solver == "dense" and r.rigid.tolist() == [True] * 3
+    assert r.omega.tolist() == [0.0] * 3 and r.shapes.shape == (3, 3)
+
+
+def test_drive_reduction_of_a_sparse_result_pairs_every_mode():
+    # The two-mass hoist (drive: reduced in the model) beside a separate fixed-free
+    # chain of 12 masses of 10 kg on 1e5 N/m springs along x (13 moving coordinates).
+    # Sparse, 11 modes: the coupled model (one more coordinate, the drum: a rigid mode)
+    # must be asked for 12 so that all 11 elastic modes pair: the chain's modes do not
+    # see the drum (relative error 0 to round-off), the hoist's m r^2 / (m r^2 + J).
+    n, R, J, m = 2, 0.25, 500.0, 5000.0
+    chain_nodes = ", ".join(f"C{i}: [{100 + i}, 0, 0]" for i in range(12))
+    springs = "\n".join(f"  - {{name: c{i}, type: axial, nodes: [{a}, C{i}], "
+                        "stiffness: 1.0e5}"
+                        for i, a in enumerate(["Z"] + [f"C{i}" for i in range(11)]))
+    model = load("hoist_chain.yaml", f"""cranefe: 1
+plane: xz
+nodes: {{D: [0, 0, 0], S: [0, 0, 30], B: [0, 0, 10], Z: [99, 0, 0], {chain_nodes}}}
+ground: [D, S, Z]
+supports: {{{", ".join(f"C{i}: [uz]" for i in range(12))}}}
+masses: {{B: {m}, {", ".join(f"C{i}: 10.0" for i in range(12))}}}
+drums:
+  hoist: {{node: D, radius: {R}, inertia: {J}, brake: false}}
+ropes:
+  hoist: {{EA: 2.0e7, path: [hoist, S, {{node: B, falls: {n}}}]}}
+springs:
+{springs}
+effects: {{sway: false, drive: reduced}}
+""")
+    reduced = modes(model, solver="sparse", count=11)
+    assert reduced.solver == "sparse" and len(reduced.omega) == 11
+    doc = drive_reduction(model, reduced)
+    assert len(doc["modes"]) == 11
+    err = sorted(abs(d["relative_error"]) for d in doc["modes"])
+    r = R / n
+    assert max(err[:10]) < 1e-9                     # the chain: ARPACK round-off
+    assert (1 - err[10]) ** 2 == pytest.approx(1 - m * r * r / (m * r * r + J), rel=1e-9)
