@@ -237,3 +237,12 @@ effects: {{sway: false, drive: reduced}}
     r = R / n
     assert max(err[:10]) < 1e-9                     # the chain: ARPACK round-off
     assert (1 - err[10]) ** 2 == pytest.approx(1 - m * r * r / (m * r * r + J), rel=1e-9)
+
+
+@pytest.mark.parametrize("m, l", [(733.0, 3.0), (99.9, 2.7)])
+def test_sparse_neutral_mode_with_a_negative_round_off(m, l):
+    # bar a neutral (k = m g l exactly), bar b stable, sparse count 1: the neutral mode's
+    # element terms cancel to a w^2 of about -1e-37 (these m, l) or -7e-16 s^-2: zero to
+    # round-off, a rigid mode, not an instability
+    r = modes(_two_bars(m * G * l, 3.0e5, m=m, l=l), solver="sparse", count=1)
+    assert r.rigid.tolist() == [True] and r.omega.tolist() == [0.0]
