@@ -202,6 +202,7 @@ def test_sparse_with_coordinates_that_no_element_holds():
     r = modes(load("free3.yaml", FREE3))
     assert r.solver == "dense" and r.rigid.tolist() == [True] * 3
     assert r.omega.tolist() == [0.0] * 3 and r.shapes.shape == (3, 3)
+    assert r.graded == ""                        # nothing graded to solve
 
 
 def test_drive_reduction_of_a_sparse_result_pairs_every_mode():
