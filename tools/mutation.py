@@ -223,16 +223,6 @@ PRESETS = {
     # sheave block, a spring chain) against hand-written ones; no time stepping
     "transient_problem": ("cranefe/analysis/transient/problem.py",
                           ["tests/test_mutation_kills_transient_problem.py"]),
-    # modal, graded: + the mass-coupled Cholesky fallback and two-coordinate merges
-    "modal": ("cranefe/analysis/modal.py",
-              ["tests/test_mutation_kills_modal_paths.py",
-               "tests/test_mutation_kills_modal_graded.py",
-               "tests/test_graded.py::test_negative_load_stiffness_merged_locally",
-               "tests/test_mutation_kills_condense_massless_map.py"]),
-    "graded": ("cranefe/analysis/graded.py",
-               ["tests/test_mutation_kills_modal_paths.py",
-                "tests/test_mutation_kills_modal_graded.py", "tests/test_graded.py",
-                "tests/test_mutation_kills_condense_massless_map.py"]),
     # coordinates/: the rope mesh, the constraint transform T_c, the kinematic map and
     # the member mesh, by hand on small models (every closed-form test reaches them, but
     # runs whole analyses: minutes per mutant); ~1-3 s per file
@@ -291,6 +281,22 @@ PRESETS = {
     # stand-ins (each has its own kill tests); ~20 s, so run with OPENBLAS_NUM_THREADS=1
     "luffing_analysis": ("cranefe/analysis/luffing/analysis.py",
                          ["tests/test_mutation_kills_luffing_analysis.py"]),
+    # analysis/modal.py: dense, sparse (massless node condensed in the operator), rigid
+    # and unstable modes, graded paths and the Cholesky fallback (coupled inertia, mass
+    # contrast), the choices modes() makes and reports, drive_reduction (~15 s)
+    "modal": ("cranefe/analysis/modal.py",
+              ["tests/test_mutation_kills_modal_paths.py",
+               "tests/test_mutation_kills_modal_graded.py",
+               "tests/test_mutation_kills_modal_choices.py",
+               "tests/test_graded.py::test_negative_load_stiffness_merged_locally",
+               "tests/test_mutation_kills_condense_massless_map.py"]),
+    # analysis/graded.py: element factor, energy, merged negative parts, massless rows,
+    # Jacobi SVD; graded models against mpmath, factor contracts by hand (~20 s)
+    "graded": ("cranefe/analysis/graded.py",
+               ["tests/test_mutation_kills_modal_paths.py",
+                "tests/test_mutation_kills_modal_graded.py", "tests/test_graded.py",
+                "tests/test_mutation_kills_condense_massless_map.py",
+                "tests/test_mutation_kills_graded_factor.py"]),
 }
 
 
