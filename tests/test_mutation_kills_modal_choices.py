@@ -247,3 +247,16 @@ def test_sparse_neutral_mode_with_a_negative_round_off(m, l):
     # round-off, a rigid mode, not an instability
     r = modes(_two_bars(m * G * l, 3.0e5, m=m, l=l), solver="sparse", count=1)
     assert r.rigid.tolist() == [True] and r.omega.tolist() == [0.0]
+
+
+def test_auto_solver_dense_up_to_dense_max_inclusive(monkeypatch):
+    # auto with no count: dense up to DENSE_MAX coordinates inclusive (docs: "dense when
+    # all modes are wanted", up to that size); the limits set low so that a 4-mass chain
+    # sits exactly on DENSE_MAX: all 4 modes, densely, without a warning
+    import cranefe.analysis.modal as modal
+    monkeypatch.setattr(modal, "SMALL", 2)
+    monkeypatch.setattr(modal, "DENSE_MAX", 4)
+    n, k, m = 4, 1.0e6, 10.0
+    r = modes(chain((k,) * n, (m,) * n))
+    assert r.solver == "dense" and not r.warnings
+    assert r.omega == pytest.approx(fixed_free(n, k, m), rel=RTOL)
