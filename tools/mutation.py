@@ -168,7 +168,8 @@ PRESETS = {
     # operation engine: the equations at a state (forces, tangents, kinematics, statics,
     # energies, powers) by hand on small scenes, no integration (~0.5 s)
     "mechanism": ("cranefe/analysis/operation/mechanism.py",
-                  ["tests/test_mutation_kills_mechanism.py"]),
+                  ["tests/test_mutation_kills_mechanism.py",
+                   "tests/test_mutation_kills_mechanism_setup.py"]),
     # damping_exact: fast kill tests only (the analyses of test_values/test_damping ran
     # minutes per mutant; that set is damping_exact_broad): a 3-DOF chain against mpmath,
     # repeated/overdamped/massless cases and the eigen-search's parts by closed forms
