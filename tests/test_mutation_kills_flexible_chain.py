@@ -147,3 +147,96 @@ def test_structure_on_a_body_fixed_to_a_slewing_tower(tmp_path):
     # without it (the portal's) would show
     R, dR, ddR, *_ = _tower(t)
     assert MASS * np.abs(R.T @ ddR @ (X - O)).max() > 1e6 * 1e-9 * np.abs(h["F"]).max()
+
+
+# ------------------------------------------------------------------ a linkage body
+# A boom hinged to the ground at O, luffed by a cylinder from the ground node A to the
+# boom's node C (a linkage of one body: operation/linkage.py); a one-element blade from
+# the boom's node N out to the elastic tip T, along the boom. The boom's joint is in the
+# linkage, not driven: its frame is the boom's because the boom is a linkage body.
+#
+# Hand kinematics (x-z plane, theta turning x toward z about O): with a = A - O = (4, -3)
+# and c0 = C - O = (4, 0), a . Rot(theta) c0 = 16 cos - 12 sin =
+# k cos(beta + theta), k = |a| |c0| = 20, beta = atan2(3, 4), so the cylinder's length
+# d^2 = |a|^2 + |c0|^2 - 2 k cos(beta + theta) gives
+#     theta = acos((41 - d^2) / 40) - beta          (theta = 0 at d = d0 = 3),
+# and differentiating k cos(beta + theta) = (41 - d^2) / 2 twice in t:
+#     theta' = d d' / (k sin(beta + theta)),
+#     theta'' = (d'^2 + d d'' - k cos(beta + theta) theta'^2) / (k sin(beta + theta)),
+# d = 3 + s, s = 0.05 t^2 (the speed table s' = 0.1 t). The boom's motion:
+# R = Rot(theta), R' = theta' R_th, R'' = theta'' R_th + theta'^2 R_thth, p = O - R O.
+
+LUFF = """cranefe: 1
+name: an elastic blade on a boom luffed by a cylinder
+plane: xz
+gravity: [0, 0, -9.81]
+nodes:
+  O: [1.0, 0, 2.0]
+  C: [5.0, 0, 2.0]
+  A: [5.0, 0, -1.0]
+  N: [9.0, 0, 2.0]
+  T: [15.0, 0, 2.0]
+ground: [O, A]
+bodies:
+  boom: {mass: 500, com: [5, 0, 2], inertia: 1000, nodes: [O, C, N]}
+joints:
+  - {name: foot, type: hinge, bodies: [ground, boom], at: O, axis: [0, 1, 0]}
+linear_drives:
+  cyl: {nodes: [A, C], pinion_radius: 0.1, gear_ratio: 10}
+members:
+  blade: {type: beam, nodes: [N, T], E: 2.1e+11, A: 0.1, Iy: 1.0e-4, rho: 78.5,
+          elements: 1, mass: lumped}
+"""
+LUFF_DRIVES = ("  duration: 3\n  drives:\n"
+               "    c: {linear: cyl, profile: {type: table, speed: [[0, 0], [2, 0.2]]}}\n")
+OL, XL, LL = np.array([1.0, 0, 2.0]), np.array([15.0, 0, 2.0]), 6.0
+ML = 78.5 * 0.1 * LL / 2
+G3 = np.array([0.0, 0.0, -9.81])
+
+
+def _boom(t):
+    """(R, R', R'', p, p', p'') of the luffed boom at t, by hand (above)."""
+    s, ds, dds = 0.05 * t * t, 0.1 * t, 0.1
+    d, k, beta = 3.0 + s, 20.0, math.atan2(3.0, 4.0)
+    th = math.acos((41.0 - d * d) / 40.0) - beta
+    sn, cs = math.sin(beta + th), math.cos(beta + th)
+    dth = d * ds / (k * sn)
+    ddth = (ds * ds + d * dds - k * cs * dth * dth) / (k * sn)
+    c, s_ = math.cos(th), math.sin(th)
+    R = np.array([[c, 0, -s_], [0, 1.0, 0], [s_, 0, c]])
+    Rt = np.array([[-s_, 0, -c], [0, 0.0, 0], [c, 0, -s_]])
+    Rtt = np.array([[-c, 0, s_], [0, 0.0, 0], [-s_, 0, -c]])
+    dR, ddR = dth * Rt, ddth * Rt + dth * dth * Rtt
+    return th, (R, dR, ddR, OL - R @ OL, -dR @ OL, -ddR @ OL)
+
+
+def test_structure_on_a_linkage_body(tmp_path):
+    """At t = 1.5 s (s = 0.1125 m, the boom turned up by 0.0281 rad): the tip's
+    position and velocity with u = (d, 0, 0), u' = (0.4, 0, -0.7) (to 1e-12 m: the
+    linkage's Newton stops 1e-13 of its size), and the forces on u: the blade's axial
+    EA/L d, gravity and the frame's terms m (R^T R'' Y + 2 R^T R' u' + R^T p'') (to
+    1e-9 of the largest: the linkage's rates to ~1e-11)."""
+    model = load(write(tmp_path, LUFF, LUFF_DRIVES))
+    mech = Mechanism(model, parse(model))
+    f = mech.flex
+    assert f.labels() == ["T.ux", "T.uz"]
+    assert [b for b, _ in f.frames] == [0]               # the boom's frame
+    f._last = f._theta = None
+    t, d = 1.5, 1e-7
+    th, (R, dR, ddR, p, dp, ddp) = _boom(t)
+    assert th > 0.02                                     # far from the ground's frame
+    u, ud = np.array([d, 0.0, 0.0]), np.array([0.4, 0.0, -0.7])
+    Y = XL + u
+    q = np.zeros(mech.n)
+    o = mech.nc + mech.nJ
+    q[o:o + 2], v = u[[0, 2]], np.zeros(mech.n)
+    v[o:o + 2] = ud[[0, 2]]
+    X_, V_ = mech.place(t, q, v)[:2]
+    tip = model.node_names.index("T")
+    np.testing.assert_allclose(X_[tip], R @ Y + p, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(V_[tip], dR @ Y + R @ ud + dp, rtol=0, atol=1e-12)
+    F = (-2.1e11 * 0.1 / LL * d * np.array([1.0, 0, 0]) + ML * R.T @ G3
+         - ML * (R.T @ ddR @ Y + 2 * R.T @ dR @ ud + R.T @ ddp))
+    ev = mech.evaluate(t, q, v, mech.taut0)
+    np.testing.assert_allclose(ev.F[o:o + 2], F[[0, 2]], rtol=0,
+                               atol=1e-9 * np.abs(F).max())
