@@ -133,3 +133,47 @@ def test_a_soft_rod_is_solved(tmp_path):
     Kt = f.strain(np.zeros(2))[2]
     np.testing.assert_allclose(Kt, np.diag([2.1e11 * 3.5e-6, 3 * 0.21]), rtol=1e-12,
                                atol=1e-12 * 0.63)
+
+
+def _refusals():
+    """(model text, analysis, substitutions, entry, words) of every refusal of the
+    module that a scene reaches: test_mutation_kills_flexible's six on its two-bar truss,
+    and the drives' and frames' three."""
+    import test_mutation_kills_flexible as base
+    from test_operation_flexible import ROTOR
+    out = []
+    for edit, words, entry in base.test_what_the_structure_refuses.pytestmark[0].args[1]:
+        text = base.TRUSS2
+        for a, b in zip(edit[::2], edit[1::2]):
+            text = _edit(text, a, b)
+        out.append((text, "  duration: 1\n", {}, entry, words))
+    rotor = _edit(ROTOR, "  T: [10.0, 0, 0]\n", "  T: [10.0, 0, 0]\n  K: [5.0, 0, 0]\n",
+                  "joints:\n", "  trolley: {mass: 10, com: [5, 0, 0], inertia: [1, 1, 1], "
+                  "nodes: [K]}\njoints:\n  - {name: travel, type: slider, bodies: [hub, "
+                  "trolley], at: K, axis: [1, 0, 0], range: [0, 9]}\n")
+    out.append((rotor, "  duration: 1\n  drives:\n    t: {slider: travel, profile: {type: "
+                "trapezoid, distance: 1, v_max: 1, a_max: 1}}\n", dict(NEL=2),
+                "analysis.drives.t", "use structure: rigid, or anchor the elastic members "
+                "on the moving body"))
+    out.append((rotor, "  duration: 1\n  drives:\n    s: {hinge: spin, torque: 1.0}\n",
+                dict(NEL=2), "analysis.drives.s", "prescribe the joint's motion with a "
+                "profile, or use structure: rigid"))
+    chain = _edit(CHAIN, "nodes: [K]}", "nodes: [K, N]}", "inertia: [1, 1, 1], nodes: [N]}",
+                  "inertia: [1, 1, 1], nodes: []}")
+    out.append((chain, DRIVES, {}, "members.hanger", "members 'boom' and 'hanger' join "
+                "nodes of bodies that move relative to each other"))
+    return out
+
+
+@pytest.mark.parametrize("k", range(9))
+def test_every_refusal_names_the_file_and_the_entry(tmp_path, k):
+    """Each refusal's message starts with the scene file and the entry
+    ('FILE: ENTRY: ...', the ModelError contract) and says what to do."""
+    text, analysis, subs, entry, words = _refusals()[k]
+    path = write(tmp_path, text, analysis, **subs)
+    model = load(path)
+    with pytest.raises(ModelError) as exc:
+        Mechanism(model, parse(model))
+    msg = str(exc.value)
+    assert msg.startswith(f"{path}: {entry + ': ' if entry else ''}"), msg
+    assert words in msg, msg
