@@ -177,3 +177,44 @@ def test_every_refusal_names_the_file_and_the_entry(tmp_path, k):
     msg = str(exc.value)
     assert msg.startswith(f"{path}: {entry + ': ' if entry else ''}"), msg
     assert words in msg, msg
+
+
+LFRAME = """cranefe: 1
+name: an L-shaped bracket in 3D
+gravity: [0, 0, -9.81]
+nodes:
+  A: [0.0, 0, 0]
+  B: [4.0, 0, 0]
+  T: [4.0, 3.0, 0]
+ground: [A]
+masses: {T: 100}
+members:
+  arm: {type: beam, nodes: [A, B], E: 2.1e+11, G: 8.0e+10, A: 0.01, Iy: 1.0e-3,
+        Iz: 1.0e-3, J: 2.0e-3, rho: 7850, orientation: [0, 0, 1], elements: 1,
+        mass: lumped}
+  hand: {type: beam, nodes: [B, T], E: 2.1e+11, G: 8.0e+10, A: 0.01, Iy: 1.0e-3,
+         Iz: 1.0e-3, J: 2.0e-3, rho: 7850, orientation: [0, 0, 1], elements: 1,
+         mass: lumped}
+"""
+
+
+def test_an_l_bracket_twists_its_arm(tmp_path):
+    """An L-shaped bracket clamped at A (arm A-B along x, a = 4 m; hand B-T along y,
+    b = 3 m), both nodes elastic, under its lumped weights P_B = rho A (a + b) / 2 g at B
+    and P_T = (100 + rho A b / 2) g at T. T sinks by
+        P_T (a^3 / (3 EI) + b^2 a / (GJ) + b^3 / (3 EI)) + P_B a^3 / (3 EI)
+    (the arm's bending, the arm's twist by the moment P_T b, the hand's bending; the
+    arm's slope at B turns the hand about its own axis: no sinking), one cubic element
+    per beam being exact for end loads (to 1e-6 relative: the Green strain's quartic
+    terms, (8e-4 / 3)^2 of it). Needs the torsion of the elastic nodes: the arm's twist
+    is 45 % of it."""
+    model = load(write(tmp_path, LFRAME, "  duration: 1\n"))
+    mech = Mechanism(model, parse(model))
+    assert mech.flex.labels() == ["B.ux", "B.uy", "B.uz", "T.ux", "T.uy", "T.uz"]
+    EI3, GJ = 3 * 2.1e11 * 1.0e-3, 8.0e10 * 2.0e-3
+    PB, PT = 7850 * 0.01 * 7 / 2 * G, (100 + 7850 * 0.01 * 3 / 2) * G
+    twist = PT * 9 * 4 / GJ
+    w = PT * (64 / EI3 + twist / PT + 27 / EI3) + PB * 64 / EI3
+    o = mech.nc + mech.nJ
+    np.testing.assert_allclose(mech.q0[o + 5], -w, rtol=1e-6)
+    assert twist > 0.4 * w
