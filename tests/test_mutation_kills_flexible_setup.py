@@ -218,3 +218,13 @@ def test_an_l_bracket_twists_its_arm(tmp_path):
     o = mech.nc + mech.nJ
     np.testing.assert_allclose(mech.q0[o + 5], -w, rtol=1e-6)
     assert twist > 0.4 * w
+
+
+def test_members_all_on_the_ground_leave_no_structure(tmp_path):
+    """The jib with its tip T on the ground as well: no elastic node, so no elastic
+    structure (the scene runs rigid: no elastic coordinates), the hook's rope 1500 g."""
+    text = _edit(DIRECT, "ground: [A, D]", "ground: [A, D, T]")
+    model = load(write(tmp_path, text, "  duration: 1\n", **JIB))
+    mech = Mechanism(model, parse(model))
+    assert mech.flex is None and mech.nu == 0
+    np.testing.assert_allclose(mech.S0, [1500 * G], rtol=1e-10)
