@@ -151,7 +151,10 @@ def _refusals():
                   "joints:\n", "  trolley: {mass: 10, com: [5, 0, 0], inertia: [1, 1, 1], "
                   "nodes: [K]}\njoints:\n  - {name: travel, type: slider, bodies: [hub, "
                   "trolley], at: K, axis: [1, 0, 0], range: [0, 9]}\n")
-    out.append((rotor, "  duration: 1\n  drives:\n    t: {slider: travel, profile: {type: "
+    # the hub spun by a profile (the blade on the hub's frame) and the trolley driven
+    # along it: the trolley's joint moves a body on a frame that carries the blade
+    out.append((rotor, "  duration: 1\n  drives:\n    s: {hinge: spin, profile: {type: "
+                "table, speed: [[0, 0], [1, 0.5]]}}\n    t: {slider: travel, profile: {type: "
                 "trapezoid, distance: 1, v_max: 1, a_max: 1}}\n", dict(NEL=2),
                 "analysis.drives.t", "use structure: rigid, or anchor the elastic members "
                 "on the moving body"))
