@@ -189,18 +189,6 @@ PRESETS = {
                      "tests/test_operation_inextensible.py::test_torque_drum_hoists_with_the_drums_inertia",
                      "tests/test_operation_inextensible.py::test_hoisting_at_constant_speed_without_sway_is_m_g",
                      "tests/test_operation_inextensible.py::test_what_constraints_do_not_cover_is_refused"]),
-    # operation/flexible.py: the elastic structure riding on the mechanism; one-element
-    # members written out by hand in the kill tests, plus the fast tests of
-    # tests/test_operation_flexible.py (its runs take minutes: left out)
-    "flexible": ("cranefe/analysis/operation/flexible.py",
-                 ["tests/test_mutation_kills_flexible.py",
-                  "tests/test_mutation_kills_flexible_frames.py",
-                  "tests/test_operation_flexible.py::test_spinning_cantilever_stiffens_southwell",
-                  "tests/test_operation_flexible.py::test_linearisation_equals_the_linear_core",
-                  "tests/test_operation_flexible.py::test_truss_and_spring_structure_equals_the_linear_core",
-                  "tests/test_operation_flexible.py::test_static_tip_deflection_under_gravity",
-                  "tests/test_operation_flexible.py::test_refused_cases_exit_2",
-                  "tests/test_operation_flexible.py::test_lean_does_not_claim_an_elastic_structure"]),
     # transient/modal.py: modal superposition with the static correction, against the
     # trapezoidal rule of the modal equations written out by hand (1-3 s)
     "transient_modal": ("cranefe/analysis/transient/modal.py",
@@ -298,6 +286,21 @@ PRESETS = {
                 "tests/test_mutation_kills_modal_graded.py", "tests/test_graded.py",
                 "tests/test_mutation_kills_condense_massless_map.py",
                 "tests/test_mutation_kills_graded_factor.py"]),
+    # operation/flexible.py: the elastic structure riding on the mechanism; one-element
+    # members, moving and chained frames, a linkage body and the setup's refusals written
+    # out by hand in the kill tests, plus the fast tests of tests/test_operation_flexible.py
+    # (its runs take minutes: left out)
+    "flexible": ("cranefe/analysis/operation/flexible.py",
+                 ["tests/test_mutation_kills_flexible.py",
+                  "tests/test_mutation_kills_flexible_frames.py",
+                  "tests/test_mutation_kills_flexible_chain.py",
+                  "tests/test_mutation_kills_flexible_setup.py",
+                  "tests/test_operation_flexible.py::test_spinning_cantilever_stiffens_southwell",
+                  "tests/test_operation_flexible.py::test_linearisation_equals_the_linear_core",
+                  "tests/test_operation_flexible.py::test_truss_and_spring_structure_equals_the_linear_core",
+                  "tests/test_operation_flexible.py::test_static_tip_deflection_under_gravity",
+                  "tests/test_operation_flexible.py::test_refused_cases_exit_2",
+                  "tests/test_operation_flexible.py::test_lean_does_not_claim_an_elastic_structure"]),
 }
 
 
