@@ -63,7 +63,7 @@ class ElasticStructure:
 
     def __init__(self, mech, model):
         self.model = model
-        self.file = model.scene_file or model.file
+        self.file = model.file          # the entries refused below are the model's
         nn = len(model.node_names)
         mm = discretize(model, nn)
         self.mm = mm
@@ -186,8 +186,8 @@ class ElasticStructure:
                             f"on the bodies that drive '{d.name}' moves as a coordinate: "
                             "an elastic structure on a joint coordinate (torque, force, "
                             "motor or free joint) is not solved yet (prescribe the joint's "
-                            "motion with a profile, or use structure: rigid)", self.file,
-                            d.entry)
+                            "motion with a profile, or use structure: rigid)",
+                            model.scene_file or model.file, d.entry)
                     if frame.setdefault(r, (f, member))[0] != f:
                         raise ModelError(
                             f"members '{frame[r][1]}' and '{member}' join nodes of bodies "
@@ -221,7 +221,8 @@ class ElasticStructure:
                     "members: the moving part would ride on the undeformed frame (a "
                     "trolley travelling along an elastic jib is a moving load on a beam, "
                     "not solved yet); use structure: rigid, or anchor the elastic "
-                    "members on the moving body", self.file, d.entry)
+                    "members on the moving body", self.model.scene_file or self.file,
+                    d.entry)
         self.frames = [(int(f), np.flatnonzero(node_frame == f)) for f in sorted(carrying)]
 
     def _elements(self, mech, model, e, l):
