@@ -30,6 +30,7 @@ import numpy as np
 import pytest
 
 import cranefe
+from cranefe.errors import ModelError
 from cranefe.analysis.loads import standard
 
 G = 9.81
@@ -262,9 +263,17 @@ def test_a_hard_start_would_slacken_the_rope_when_braking(tmp_path):
 
 def test_only_phi6_runs_the_declared_drive_class_alone(tmp_path):
     """only = [phi6] (a sweep's output): phi2 from the declared class's speed alone
-    (HD4: 0.5 v_max), phi6 from it; a declared hoisting class is used as given."""
-    r = cranefe.loads(str(write(tmp_path, "  drive_class: HD4\n  hoisting_class: HC2\n")),
-                      only=["phi6"])
+    (HD4: 0.5 v_max), phi6 from it; a declared hoisting class is used as given. phi2 is
+    run for phi6 but reported only when asked too."""
+    path = write(tmp_path, "  drive_class: HD4\n  hoisting_class: HC2\n")
+    r6 = cranefe.loads(str(path), only=["phi6"])
+    assert set(r6.factors) == {"phi6"}
+    assert r6.factors["phi6"]["value"] == pytest.approx(0.5 * (1 + phi2(0.25)), rel=TOL)
+    assert r6.factors["phi6"]["standard"] == pytest.approx(0.5 * (1 + line("HC2", 0.25)),
+                                                           rel=1e-12)
+    assert [t.name for t in r6.simulations] == ["lift-off 0.25 m/s"]
+    assert [row[0] for row in r6.rows()] == ["phi6"]
+    r = cranefe.loads(str(path), only=["phi6", "phi2"])
     assert set(r.factors) == {"phi2", "phi6"}
     p2 = r.factors["phi2"]
     assert [p["v_h_m_s"] for p in p2["curve"]] == [0.25]
@@ -285,9 +294,10 @@ def test_only_phi2_of_hd5_is_the_hoist_start(tmp_path):
                                 hoist="  hoist: {drum: hoist, load: H, speed: 1.0, "
                                 "creep: 0.125, ramp: 0.8, jerk_time: 0}")), only=["phi2"])
     p2 = r.factors["phi2"]
-    # the start also gives phi5 of the hoist, reported with it
-    assert set(r.factors) == {"phi2", "phi5"}
-    assert r.factors["phi5"]["hoist"]["value"] == pytest.approx(2.0, rel=TOL)
+    # the start also gives phi5 of the hoist, reported only when asked (the bug was: it
+    # came with phi2)
+    assert set(r.factors) == {"phi2"}
+    assert [row[0] for row in r.rows()] == ["phi2", "phi2 class"]
     a = 1.0 / 0.8
     assert p2["value"] == pytest.approx(1 + 2 * a / G, rel=TOL)
     assert p2["v_h_m_s"] == 0.0 and p2["simulation"] == "hoist start"
@@ -300,6 +310,33 @@ def test_only_phi2_of_hd5_is_the_hoist_start(tmp_path):
     assert p2["hoisting_class_source"] == "HC4: the crane exceeds every class somewhere"
     assert p2["standard"] == pytest.approx(1.20, rel=1e-12)
     assert [t.name for t in r.simulations] == ["hoist start"]
+
+
+def test_only_phi2_and_the_hoist_of_hd5_share_the_start(tmp_path):
+    """only = [phi2, hoist] (or phi5) with HD5: the one hoist start gives both, phi5 = 2
+    (a step of acceleration a = 1.25 m/s^2) and phi2 = 1 + 2 a / g."""
+    path = write(tmp_path, "  drive_class: HD5\n", hoist="  hoist: {drum: hoist, load: H, "
+                 "speed: 1.0, creep: 0.125, ramp: 0.8, jerk_time: 0}")
+    for only in (["phi2", "hoist"], ["phi5", "phi2"]):
+        r = cranefe.loads(str(path), only=only)
+        assert set(r.factors) == {"phi2", "phi5"} and set(r.factors["phi5"]) == {"hoist"}
+        assert r.factors["phi5"]["hoist"]["value"] == pytest.approx(2.0, rel=TOL)
+        assert r.factors["phi2"]["value"] == pytest.approx(1 + 2 * 1.25 / G, rel=TOL)
+        assert [t.name for t in r.simulations] == ["hoist start"]
+
+
+def test_only_the_notes_and_an_unknown_name(tmp_path):
+    """phi4 and phi7 are notes (no simulation); a name that is neither a factor nor a
+    drive of the scene is a ModelError naming what there is."""
+    path = write(tmp_path)
+    r = cranefe.loads(str(path), only=["phi4", "phi7"])
+    assert set(r.factors) == {"phi4", "phi7"} and r.simulations == ()
+    assert r.factors["phi7"]["standard"] == [1.25, 1.6]
+    assert [row[0] for row in r.rows()] == ["phi4", "phi7"]
+    with pytest.raises(ModelError, match="unknown factor or drive 'phi9' in only=; "
+                       "use phi1-phi7 or a drive: hoist") as e:
+        cranefe.loads(str(path), only=["phi2", "phi9"])
+    assert e.value.entry == "only" and str(e.value.file).endswith("scene.yaml")
 
 
 def test_only_phi1_runs_full_speed_only(tmp_path):
