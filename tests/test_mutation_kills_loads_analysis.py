@@ -517,6 +517,7 @@ def test_phi5_of_a_slider_move(tmp_path, jerk):
     assert p["standard"] == ([1.0, 1.5] if jerk else [1.5, 2.0])
     assert p["ramp_s"] == pytest.approx(ramp) and p["jerk_time_s"] == jerk
     assert p["simulation"] == "travel move"
+    assert r.shapers == {} and "shapers" not in r.to_dict()
     tr = r.simulations[0]
     assert tr.name == "travel move" and tr.engine == "operation"
     prof = tr.parameters["profile"]
@@ -528,6 +529,30 @@ def test_phi5_of_a_slider_move(tmp_path, jerk):
     # pendulum as long as the highest node (the drum, 20.5 m) is above the load (10 m)
     assert tr.duration == pytest.approx(6.0 / 0.5 + ramp + 0.75 * 2 * np.pi *
                                         np.sqrt(10.5 / G), rel=1e-12)
+
+
+def test_a_shaped_slider_move(tmp_path):
+    """shapers=("ZV",): the cart's trapezoid (1 s ramp, 6 m at 0.5 m/s) also run through
+    a ZV shaper at the pendulum's w = sqrt(g / l): the shaped move is half a period
+    pi / w longer (to the engine's 1e-7: 1e-6) and leaves no sway in the linear limit
+    (below 1e-3 of the unshaped move's, which is (a / g) 2 sin(w T / 2) 2 |sin(w 12 s /
+    2)| = 1.84 deg of the two unshaped pulses: > 1 deg; measured ratio 1e-4)."""
+    (tmp_path / "cart.yaml").write_text(CART)
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: t\nmodel: cart.yaml\nanalysis:\n  type: loads\n"
+                    "  hoist: {speed: 0.2}\n  tolerance: 1.0e-7\n  drives:\n"
+                    "    travel: {v_max: 0.5, ramp: 1.0, jerk_time: 0, distance: 6.0}\n")
+    r = cranefe.loads(str(path), only=["travel"], shapers=("ZV",))
+    s = r.to_dict()["shapers"]["travel"]
+    assert set(r.shapers) == {"travel"} and set(s) == {"unshaped", "ZV"}
+    w = np.sqrt(G / 10.0)
+    assert s["unshaped"]["move_time_s"] == pytest.approx(6.0 / 0.5 + 1.0, rel=1e-9)
+    assert s["ZV"]["move_time_s"] - s["unshaped"]["move_time_s"] == pytest.approx(
+        np.pi / w, rel=1e-6)
+    assert s["unshaped"]["residual_sway_deg"] > 1.0
+    assert s["ZV"]["residual_sway_deg"] < 1e-3 * s["unshaped"]["residual_sway_deg"]
+    assert set(r.factors) == {"phi5"}
+    assert [t.name for t in r.simulations] == ["travel move"]
 
 
 def test_a_release_that_would_slacken_the_rope(tmp_path):
