@@ -26,6 +26,8 @@ peaks are interpolated (cubic Hermite), so a peak's error is O((w h)^4) = 1.3e-5
 w h = 0.06; 1e-4 below. Exact numbers (speeds, classes, lines) to 1e-12.
 """
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -567,3 +569,94 @@ def test_a_release_that_would_slacken_the_rope(tmp_path):
     assert set(p3) == KEYS["phi3"] | {"slack"}
     assert p3["slack"].startswith("the rope would go slack")
     assert [t.name for t in r.simulations] == ["release"]
+
+
+BLOCK = """cranefe: 1
+name: a heavy hook block with the load on a sling below it
+plane: xz
+nodes: {{D: [0, 0, 0], S: [0, 0, 30], B: [0, 0, 10], H: [0, 0, 5]}}
+ground: [D, S]
+masses: {{B: 5000.0, H: 3000.0}}
+drums:
+  hoist: {{node: D, radius: 0.25, inertia: 500.0, brake: false}}
+ropes:
+{ropes}
+"""
+BLOCK_ROPES = ("  hoist_rope: {EA: 3.15e6, path: [hoist, S, {node: B, falls: 2}]}",
+               "  sling: {EA: 2.5e5, path: [B, H]}")
+
+
+@functools.lru_cache(maxsize=None)
+def block_reference(release):
+    """Rope forces (hoist rope, sling) of the block B (5000 kg) on 2 falls of the hoist
+    rope (k1 = EA / 70 m = 45 000 N/m, 4 k1 at B) with the load H (3000 kg) on the
+    sling (k2 = EA / 5 m = 50 000 N/m), from the static state, displacements x up:
+    m_B x_B'' = 4 k1 (u - x_B) - k2 (x_B - x_H), m_H x_H'' = k2 (x_B - x_H) + f;
+    S1 = (m_B + m_H) g / 2 + 2 k1 (u - x_B), S2 = m_H g + k2 (x_B - x_H). Hoist start
+    (release False): the hook's rigid motion u with u'' = 1 m/s^2 for 0.5 s (0.5 m/s),
+    over 2 s; release (True): half of H dropped at once (m_H -> 1500 kg, f = 1500 g,
+    u = 0) over 1.5 s. DOP853 to 1e-12, sampled every 1e-4 s (the peaks to 1e-7)."""
+    from scipy.integrate import solve_ivp
+    mb, mh, k1, k2 = 5000.0, 3000.0, 3.15e6 / 70, 2.5e5 / 5
+    acc, ramp, f, end = (0.0, 0.0, 1500 * G, 1.5) if release else (1.0, 0.5, 0.0, 2.0)
+    if release:
+        mh = 1500.0
+
+    def rhs(t, y):
+        xb, xh, vb, vh, u, du = y
+        return [vb, vh, (4 * k1 * (u - xb) - k2 * (xb - xh)) / mb,
+                (k2 * (xb - xh) + f) / mh, du, acc if t < ramp else 0.0]
+
+    t, y, y0 = [], [], np.zeros(6)
+    for a, b in ((0.0, ramp), (ramp, end)):
+        if b > a:
+            sol = solve_ivp(rhs, (a, b), y0, method="DOP853", rtol=1e-12, atol=1e-13,
+                            dense_output=True, max_step=0.01)
+            grid = np.arange(a, b, 1e-4)
+            t.append(grid)
+            y.append(sol.sol(grid))
+            y0 = sol.y[:, -1]
+    t, y = np.concatenate(t), np.hstack(y)
+    S1 = 8000 * G / 2 + 2 * k1 * (y[4] - y[0])
+    S2 = 3000 * G + k2 * (y[0] - y[1])
+    return t, S1, S2
+
+
+@pytest.mark.parametrize("order", [(0, 1), (1, 0)])
+def test_two_ropes_carry_the_load(tmp_path, order):
+    """The factor of the rope that counts among two carrying the load (either order in
+    the file): HD5's phi2 and phi5 of the hoist start are the sling's (the largest:
+    phi5 2.296 against 1.394 of the hoist rope), phi3 of releasing half the load the
+    sling's (the lowest: 0.157 against 0.449), each rope's static force its own (the
+    hoist rope 4000 g, the sling 3000 g). Tolerance 2e-3: the trapezoidal rule's phase
+    error w t (w h)^2 / 12 = 1.5e-3 at the upper mode w = 7.13 rad/s, t = 2 s, h = 5 ms
+    (measured 6e-5)."""
+    (tmp_path / "m.yaml").write_text(BLOCK.format(
+        ropes="\n".join(BLOCK_ROPES[i] for i in order)))
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: two ropes\nmodel: m.yaml\nanalysis:\n"
+                    "  type: loads\n  hoist: {drum: hoist, load: H, speed: 0.5, creep: 0.1, "
+                    "ramp: 0.5, jerk_time: 0}\n  release: {fraction: 0.5, time: 0}\n"
+                    "  drive_class: HD5\n  after_lift_off: 1.5\n  time_step: 0.005\n")
+    r = cranefe.loads(str(path), only=["phi2", "hoist", "phi3"])
+    assert [(t.name, t.duration) for t in r.simulations] == [("hoist start", 2.0),
+                                                              ("release", 1.5)]
+    t, S1, S2 = block_reference(False)
+    s10, s20 = 8000 * G / 2, 3000 * G
+    assert (S1.max() - s10) / s10 < (S2.max() - s20) / s20      # the sling counts
+    p5, p2 = r.factors["phi5"]["hoist"], r.factors["phi2"]
+    assert p5["rope"] == p2["rope"] == "sling"
+    assert p5["value"] == pytest.approx((S2.max() - s20) / (s20 * 1.0 / G), rel=2e-3)
+    assert p5["rigid_body_force_N"] == pytest.approx(3000 * 1.0, rel=1e-9)
+    assert p5["peak_force_N"] == pytest.approx(S2.max(), rel=2e-3)
+    assert p5["peak_time_s"] == pytest.approx(t[np.argmax(S2)], abs=0.01)
+    assert p2["value"] == pytest.approx(S2.max() / s20, rel=2e-3)
+    assert p2["peak_time_s"] == pytest.approx(t[np.argmax(S2)], abs=0.01)
+    t, S1, S2 = block_reference(True)
+    assert S2.min() / s20 < S1.min() / s10                      # the sling counts
+    p3 = r.factors["phi3"]
+    assert p3["rope"] == "sling"
+    assert p3["value"] == pytest.approx(S2.min() / s20, abs=2e-3)
+    assert p3["beta3_equivalent"] == pytest.approx((1 - S2.min() / s20) / 0.5 - 1,
+                                                   abs=2e-3 / 0.5)
+    assert p3["peak_time_s"] == pytest.approx(t[np.argmin(S2)], abs=0.01)
