@@ -641,12 +641,12 @@ def test_two_ropes_carry_the_load(tmp_path, order):
         ropes="\n".join(BLOCK_ROPES[i] for i in order)))
     path = tmp_path / "s.yaml"
     path.write_text("cranefe: 1\nscene: two ropes\nmodel: m.yaml\nanalysis:\n"
-                    "  type: loads\n  hoist: {drum: hoist, load: H, speed: 0.5, creep: 0.1, "
-                    "ramp: 0.5, jerk_time: 0}\n  release: {fraction: 0.5, time: 0}\n"
+                    "  type: loads\n  hoist: {drum: hoist, load: H, speed: 0.5, "
+                    "creep: 0.1, ramp: 0.5, jerk_time: 0}\n  release: {fraction: 0.5, time: 0}\n"
                     "  drive_class: HD5\n  after_lift_off: 1.5\n  time_step: 0.005\n")
     r = cranefe.loads(str(path), only=["phi2", "hoist", "phi3"])
-    assert [(t.name, t.duration) for t in r.simulations] == [("hoist start", 2.0),
-                                                              ("release", 1.5)]
+    assert [(t.name, t.duration) for t in r.simulations] == [
+        ("hoist start", 2.0), ("release", 1.5)]
     t, S1, S2 = block_reference(False)
     s10, s20 = 8000 * G / 2, 3000 * G
     assert (S1.max() - s10) / s10 < (S2.max() - s20) / s20      # the sling counts
