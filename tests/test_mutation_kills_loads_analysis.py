@@ -470,7 +470,11 @@ def test_phi1_of_the_masses_of_an_elastic_arm(tmp_path):
     tol = 0.01 * np.abs(whole).max() / G
     assert p1["whole_crane"]["upper"] == pytest.approx(1 + whole.max() / G, abs=tol)
     assert p1["whole_crane"]["lower"] == pytest.approx(1 + whole.min() / G, abs=tol)
-    assert p1["standard"] == 1.1
+    assert p1["standard"] == 1.1 and p1["standard_range"] == [0.9, 1.1]
+    # the computed document's keys (docs/loads.md, "Output")
+    assert set(p1) == KEYS["phi1"] | {"mass", "peak_time_s", "whole_crane"}
+    assert p1["clause"].startswith("EN 13001-2") and "mass-weighted" in p1["assumes"]
+    assert p1["simulation"] == "lift-off 0.5 m/s"
 
 
 CART = """cranefe: 1
