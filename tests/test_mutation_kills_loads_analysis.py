@@ -341,6 +341,15 @@ def test_only_the_notes_and_an_unknown_name(tmp_path):
     assert e.value.entry == "only" and str(e.value.file).endswith("scene.yaml")
 
 
+def test_only_phi2_of_hd2_runs_at_creep(tmp_path):
+    """Drive class HD2 (Table 3: v_h = the creep speed, 0.125 m/s) alone: one lift-off
+    at creep, phi2 = 1 + v w / g."""
+    r = cranefe.loads(str(write(tmp_path, "  drive_class: HD2\n")), only=["phi2"])
+    assert [t.name for t in r.simulations] == ["lift-off 0.125 m/s"]
+    assert r.factors["phi2"]["value"] == pytest.approx(phi2(0.125), rel=TOL)
+    assert r.factors["phi2"]["v_h_m_s"] == 0.125
+
+
 def test_only_phi1_runs_full_speed_only(tmp_path):
     r = cranefe.loads(str(write(tmp_path)), only=["phi1"])
     assert set(r.factors) == {"phi1"}
@@ -529,6 +538,10 @@ def test_phi5_of_a_slider_move(tmp_path, jerk):
     assert p["standard"] == ([1.0, 1.5] if jerk else [1.5, 2.0])
     assert p["ramp_s"] == pytest.approx(ramp) and p["jerk_time_s"] == jerk
     assert p["simulation"] == "travel move"
+    assert set(p) == {"value", "standard", "standard_text", "kind", "acceleration",
+                      "ramp_s", "jerk_time_s", "rigid_body_force_N", "peak_force_N",
+                      "peak_time_s", "simulation", "clause", "assumes"}
+    assert p["clause"].startswith("EN 13001-2") and "operation engine" in p["assumes"]
     assert r.shapers == {} and "shapers" not in r.to_dict()
     tr = r.simulations[0]
     assert tr.name == "travel move" and tr.engine == "operation"
