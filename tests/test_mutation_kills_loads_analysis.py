@@ -249,9 +249,11 @@ def test_a_hard_start_would_slacken_the_rope_when_braking(tmp_path):
     braking over the same ramp mirrors it: S0 (1 - phi5 a / g) < 0, the rope would go
     slack. Tolerance 1e-3: the trapezoidal rule's frequency error (w h)^2 / 12 = 3e-4
     moves 2 sin(w T / 2) by (w T / 2) cot(w T / 2) times that (measured 2.9e-4)."""
-    r = cranefe.loads(str(write(tmp_path, hoist="  hoist: {drum: hoist, load: H, speed: "
-                                "2.0, creep: 0.2, ramp: 0.1, jerk_time: 0}")),
-                      only=["hoist"])
+    path = write(tmp_path, hoist="  hoist: {drum: hoist, load: H, speed: 2.0, creep: 0.2, "
+                 "ramp: 0.1, jerk_time: 0}")
+    r = cranefe.loads(str(path), only=["phi5"])         # every drive's phi5: the hoist's
+    assert set(r.factors) == {"phi5"} and set(r.factors["phi5"]) == {"hoist"}
+    r = cranefe.loads(str(path), only=["hoist"])
     assert set(r.factors) == {"phi5"}
     p = r.factors["phi5"]["hoist"]
     a = 2.0 / 0.1
