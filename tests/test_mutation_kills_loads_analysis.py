@@ -26,10 +26,13 @@ peaks are interpolated (cubic Hermite), so a peak's error is O((w h)^4) = 1.3e-5
 w h = 0.06; 1e-4 below. Exact numbers (speeds, classes, lines) to 1e-12.
 """
 
+import functools
+
 import numpy as np
 import pytest
 
 import cranefe
+from cranefe.errors import ModelError
 from cranefe.analysis.loads import standard
 
 G = 9.81
@@ -246,9 +249,11 @@ def test_a_hard_start_would_slacken_the_rope_when_braking(tmp_path):
     braking over the same ramp mirrors it: S0 (1 - phi5 a / g) < 0, the rope would go
     slack. Tolerance 1e-3: the trapezoidal rule's frequency error (w h)^2 / 12 = 3e-4
     moves 2 sin(w T / 2) by (w T / 2) cot(w T / 2) times that (measured 2.9e-4)."""
-    r = cranefe.loads(str(write(tmp_path, hoist="  hoist: {drum: hoist, load: H, speed: "
-                                "2.0, creep: 0.2, ramp: 0.1, jerk_time: 0}")),
-                      only=["hoist"])
+    path = write(tmp_path, hoist="  hoist: {drum: hoist, load: H, speed: 2.0, creep: 0.2, "
+                 "ramp: 0.1, jerk_time: 0}")
+    r = cranefe.loads(str(path), only=["phi5"])         # every drive's phi5: the hoist's
+    assert set(r.factors) == {"phi5"} and set(r.factors["phi5"]) == {"hoist"}
+    r = cranefe.loads(str(path), only=["hoist"])
     assert set(r.factors) == {"phi5"}
     p = r.factors["phi5"]["hoist"]
     a = 2.0 / 0.1
@@ -262,9 +267,17 @@ def test_a_hard_start_would_slacken_the_rope_when_braking(tmp_path):
 
 def test_only_phi6_runs_the_declared_drive_class_alone(tmp_path):
     """only = [phi6] (a sweep's output): phi2 from the declared class's speed alone
-    (HD4: 0.5 v_max), phi6 from it; a declared hoisting class is used as given."""
-    r = cranefe.loads(str(write(tmp_path, "  drive_class: HD4\n  hoisting_class: HC2\n")),
-                      only=["phi6"])
+    (HD4: 0.5 v_max), phi6 from it; a declared hoisting class is used as given. phi2 is
+    run for phi6 but reported only when asked too."""
+    path = write(tmp_path, "  drive_class: HD4\n  hoisting_class: HC2\n")
+    r6 = cranefe.loads(str(path), only=["phi6"])
+    assert set(r6.factors) == {"phi6"}
+    assert r6.factors["phi6"]["value"] == pytest.approx(0.5 * (1 + phi2(0.25)), rel=TOL)
+    assert r6.factors["phi6"]["standard"] == pytest.approx(0.5 * (1 + line("HC2", 0.25)),
+                                                           rel=1e-12)
+    assert [t.name for t in r6.simulations] == ["lift-off 0.25 m/s"]
+    assert [row[0] for row in r6.rows()] == ["phi6"]
+    r = cranefe.loads(str(path), only=["phi6", "phi2"])
     assert set(r.factors) == {"phi2", "phi6"}
     p2 = r.factors["phi2"]
     assert [p["v_h_m_s"] for p in p2["curve"]] == [0.25]
@@ -285,9 +298,10 @@ def test_only_phi2_of_hd5_is_the_hoist_start(tmp_path):
                                 hoist="  hoist: {drum: hoist, load: H, speed: 1.0, "
                                 "creep: 0.125, ramp: 0.8, jerk_time: 0}")), only=["phi2"])
     p2 = r.factors["phi2"]
-    # the start also gives phi5 of the hoist, reported with it
-    assert set(r.factors) == {"phi2", "phi5"}
-    assert r.factors["phi5"]["hoist"]["value"] == pytest.approx(2.0, rel=TOL)
+    # the start also gives phi5 of the hoist, reported only when asked (the bug was: it
+    # came with phi2)
+    assert set(r.factors) == {"phi2"}
+    assert [row[0] for row in r.rows()] == ["phi2", "phi2 class"]
     a = 1.0 / 0.8
     assert p2["value"] == pytest.approx(1 + 2 * a / G, rel=TOL)
     assert p2["v_h_m_s"] == 0.0 and p2["simulation"] == "hoist start"
@@ -300,6 +314,42 @@ def test_only_phi2_of_hd5_is_the_hoist_start(tmp_path):
     assert p2["hoisting_class_source"] == "HC4: the crane exceeds every class somewhere"
     assert p2["standard"] == pytest.approx(1.20, rel=1e-12)
     assert [t.name for t in r.simulations] == ["hoist start"]
+
+
+def test_only_phi2_and_the_hoist_of_hd5_share_the_start(tmp_path):
+    """only = [phi2, hoist] (or phi5) with HD5: the one hoist start gives both, phi5 = 2
+    (a step of acceleration a = 1.25 m/s^2) and phi2 = 1 + 2 a / g."""
+    path = write(tmp_path, "  drive_class: HD5\n", hoist="  hoist: {drum: hoist, load: H, "
+                 "speed: 1.0, creep: 0.125, ramp: 0.8, jerk_time: 0}")
+    for only in (["phi2", "hoist"], ["phi5", "phi2"]):
+        r = cranefe.loads(str(path), only=only)
+        assert set(r.factors) == {"phi2", "phi5"} and set(r.factors["phi5"]) == {"hoist"}
+        assert r.factors["phi5"]["hoist"]["value"] == pytest.approx(2.0, rel=TOL)
+        assert r.factors["phi2"]["value"] == pytest.approx(1 + 2 * 1.25 / G, rel=TOL)
+        assert [t.name for t in r.simulations] == ["hoist start"]
+
+
+def test_only_the_notes_and_an_unknown_name(tmp_path):
+    """phi4 and phi7 are notes (no simulation); a name that is neither a factor nor a
+    drive of the scene is a ModelError naming what there is."""
+    path = write(tmp_path)
+    r = cranefe.loads(str(path), only=["phi4", "phi7"])
+    assert set(r.factors) == {"phi4", "phi7"} and r.simulations == ()
+    assert r.factors["phi7"]["standard"] == [1.25, 1.6]
+    assert [row[0] for row in r.rows()] == ["phi4", "phi7"]
+    with pytest.raises(ModelError, match="unknown factor or drive 'phi9' in only=; "
+                       "use phi1-phi7 or a drive: hoist") as e:
+        cranefe.loads(str(path), only=["phi2", "phi9"])
+    assert e.value.entry == "only" and str(e.value.file).endswith("scene.yaml")
+
+
+def test_only_phi2_of_hd2_runs_at_creep(tmp_path):
+    """Drive class HD2 (Table 3: v_h = the creep speed, 0.125 m/s) alone: one lift-off
+    at creep, phi2 = 1 + v w / g."""
+    r = cranefe.loads(str(write(tmp_path, "  drive_class: HD2\n")), only=["phi2"])
+    assert [t.name for t in r.simulations] == ["lift-off 0.125 m/s"]
+    assert r.factors["phi2"]["value"] == pytest.approx(phi2(0.125), rel=TOL)
+    assert r.factors["phi2"]["v_h_m_s"] == 0.125
 
 
 def test_only_phi1_runs_full_speed_only(tmp_path):
@@ -316,12 +366,15 @@ nodes:
   T: [10.0, 0.0, 0.0]
   D: [10.0, 0.0, -20.0]
   H: [10.0, 0.0, -10.0]
+  C: [0.5, 0.0, 0.0]
 ground: [O, D]
-masses: {H: 2000, T: 500}
+masses: {H: 2000, T: 500, C: 200}
 bodies:
-  arm: {mass: 1000, com: [5.0, 0.0, 0.0], inertia: [1.0e3, 1.0e3, 1.0e3], nodes: [T]}
+  arm: {mass: 1000, com: [5.0, 0.0, 0.0], inertia: [1.0e3, 1.0e3, 1.0e3], nodes: [T, C]}
+  cab: {mass: 800, com: [-2.0, 0.0, 0.0], inertia: [1.0e3, 1.0e3, 1.0e3]}
 joints:
   - {name: pivot, type: hinge, bodies: [ground, arm], at: O, axis: [0, 1, 0]}
+  - {name: cab_fixed, type: fixed, bodies: [ground, cab], at: O}
 springs:
   - {name: arm_spring, type: rotational, bodies: [ground, arm], at: O, axis: [0, 1, 0],
      stiffness: 1.0e7}
@@ -335,16 +388,17 @@ ropes:
 def arm_reference(duration):
     """Vertical accelerations (up) of the arm's centre of mass (x = 5 m) and of the
     point mass on its tip (x = 10 m) during the lift-off at 0.5 m/s (drum at 2 rad/s),
-    on a fine time grid. The arm rotates about O (angle r, inertia J_O = 1000 + 1000 x
-    5^2 + 500 x 10^2); the rope D-T-H (c = EA / 30) is stretched by e = R theta - 20 r -
+    on a fine time grid (the mass C at x = 0.5 m moves as a tenth of the arm's centre).
+    The arm rotates about O (angle r, inertia J_O = 1000 + 1000 x 5^2 + 500 x 10^2 +
+    200 x 0.5^2); the rope D-T-H (c = EA / 30) is stretched by e = R theta - 20 r -
     u (the tip at 10 m shortens both the drum's span and the fall as it goes down):
     J_O r'' + k_r r = 20 c e, m u'' = c e - m g while lifted. On the ground (u = 0, held)
     until c e reaches m g; the load then lifts off, and the arm's swing sets it down again
     once (a plastic landing: u' = 0, as the transient core does) before it lifts for
     good. Each phase integrated by DOP853 to 1e-12 with its event located to 1e-12."""
     from scipy.integrate import solve_ivp
-    J_O, m, c, kr, Rd, wd = 1000 + 1000 * 25.0 + 500 * 100.0, 2000.0, 2.16e6 / 30, 1.0e7, \
-        0.25, 2.0
+    J_O, m, c, kr, Rd, wd = 1000 + 1000 * 25.0 + 500 * 100.0 + 200 * 0.25, 2000.0, \
+        2.16e6 / 30, 1.0e7, 0.25, 2.0
 
     def force(t, y):                                  # rope force and accelerations
         e = Rd * wd * t - 20 * y[0] - y[1]
@@ -391,8 +445,9 @@ def arm_reference(duration):
 
 def test_phi1_of_the_masses_of_an_elastic_arm(tmp_path):
     """phi1 = 1 + (vertical acceleration)/g of each crane mass (the arm at its centre of
-    mass, the point mass carried on its tip) during the lift-off at full speed; the
-    worst is the tip; whole_crane the mass-weighted mean. Tolerance 1 % of each a/g
+    mass, the point masses carried on its tip and 0.5 m from the pivot) during the
+    lift-off at full speed; the worst is the tip; whole_crane the mass-weighted mean; the
+    cab fixed to the ground does not move and is left out. Tolerance 1 % of each a/g
     (a/g = 0.24 for the arm, 0.47 for the tip): the code takes central differences of the
     stored velocities (2150 steps of 2 ms, stored every second one: 4 ms, (W h)^2 / 6 =
     2e-3 at W = 23 rad/s), samples their peak, and the trapezoidal rule lags in phase
@@ -410,9 +465,10 @@ def test_phi1_of_the_masses_of_an_elastic_arm(tmp_path):
     assert len(lifts) == 2
     assert r.simulations[0].parameters["drum_speed_rad_s"] == pytest.approx(2.0)
     by = p1["by_mass"]
-    assert set(by) == {"arm", "T"}
+    assert set(by) == {"arm", "T", "C"}
     assert by["arm"]["mass_kg"] == 1000.0 and by["T"]["mass_kg"] == 500.0
-    for name, acc in (("arm", arm), ("T", tip)):
+    assert by["C"]["mass_kg"] == 200.0
+    for name, acc in (("arm", arm), ("T", tip), ("C", arm / 10)):
         tol = 0.01 * np.abs(acc).max() / G
         assert by[name]["upper"] == pytest.approx(1 + acc.max() / G, abs=tol), name
         assert by[name]["lower"] == pytest.approx(1 + acc.min() / G, abs=tol), name
@@ -421,11 +477,15 @@ def test_phi1_of_the_masses_of_an_elastic_arm(tmp_path):
     assert p1["peak_time_s"] == by["T"]["time_upper_s"] > lifts[0]
     # the upward peak (the oscillation is nearly symmetric: its time tells up from down)
     assert p1["peak_time_s"] == pytest.approx(ts[np.argmax(tip)], abs=0.01)
-    whole = (1000 * arm + 500 * tip) / 1500
+    whole = (1000 * arm + 500 * tip + 200 * arm / 10) / 1700
     tol = 0.01 * np.abs(whole).max() / G
     assert p1["whole_crane"]["upper"] == pytest.approx(1 + whole.max() / G, abs=tol)
     assert p1["whole_crane"]["lower"] == pytest.approx(1 + whole.min() / G, abs=tol)
-    assert p1["standard"] == 1.1
+    assert p1["standard"] == 1.1 and p1["standard_range"] == [0.9, 1.1]
+    # the computed document's keys (docs/loads.md, "Output")
+    assert set(p1) == KEYS["phi1"] | {"mass", "peak_time_s", "whole_crane"}
+    assert p1["clause"].startswith("EN 13001-2") and "mass-weighted" in p1["assumes"]
+    assert p1["simulation"] == "lift-off 0.5 m/s"
 
 
 CART = """cranefe: 1
@@ -480,6 +540,11 @@ def test_phi5_of_a_slider_move(tmp_path, jerk):
     assert p["standard"] == ([1.0, 1.5] if jerk else [1.5, 2.0])
     assert p["ramp_s"] == pytest.approx(ramp) and p["jerk_time_s"] == jerk
     assert p["simulation"] == "travel move"
+    assert set(p) == {"value", "standard", "standard_text", "kind", "acceleration",
+                      "ramp_s", "jerk_time_s", "rigid_body_force_N", "peak_force_N",
+                      "peak_time_s", "simulation", "clause", "assumes"}
+    assert p["clause"].startswith("EN 13001-2") and "operation engine" in p["assumes"]
+    assert r.shapers == {} and "shapers" not in r.to_dict()
     tr = r.simulations[0]
     assert tr.name == "travel move" and tr.engine == "operation"
     prof = tr.parameters["profile"]
@@ -491,6 +556,30 @@ def test_phi5_of_a_slider_move(tmp_path, jerk):
     # pendulum as long as the highest node (the drum, 20.5 m) is above the load (10 m)
     assert tr.duration == pytest.approx(6.0 / 0.5 + ramp + 0.75 * 2 * np.pi *
                                         np.sqrt(10.5 / G), rel=1e-12)
+
+
+def test_a_shaped_slider_move(tmp_path):
+    """shapers=("ZV",): the cart's trapezoid (1 s ramp, 6 m at 0.5 m/s) also run through
+    a ZV shaper at the pendulum's w = sqrt(g / l): the shaped move is half a period
+    pi / w longer (to the engine's 1e-7: 1e-6) and leaves no sway in the linear limit
+    (below 1e-3 of the unshaped move's, which is (a / g) 2 sin(w T / 2) 2 |sin(w 12 s /
+    2)| = 1.84 deg of the two unshaped pulses: > 1 deg; measured ratio 1e-4)."""
+    (tmp_path / "cart.yaml").write_text(CART)
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: t\nmodel: cart.yaml\nanalysis:\n  type: loads\n"
+                    "  hoist: {speed: 0.2}\n  tolerance: 1.0e-7\n  drives:\n"
+                    "    travel: {v_max: 0.5, ramp: 1.0, jerk_time: 0, distance: 6.0}\n")
+    r = cranefe.loads(str(path), only=["travel"], shapers=("ZV",))
+    s = r.to_dict()["shapers"]["travel"]
+    assert set(r.shapers) == {"travel"} and set(s) == {"unshaped", "ZV"}
+    w = np.sqrt(G / 10.0)
+    assert s["unshaped"]["move_time_s"] == pytest.approx(6.0 / 0.5 + 1.0, rel=1e-9)
+    assert s["ZV"]["move_time_s"] - s["unshaped"]["move_time_s"] == pytest.approx(
+        np.pi / w, rel=1e-6)
+    assert s["unshaped"]["residual_sway_deg"] > 1.0
+    assert s["ZV"]["residual_sway_deg"] < 1e-3 * s["unshaped"]["residual_sway_deg"]
+    assert set(r.factors) == {"phi5"}
+    assert [t.name for t in r.simulations] == ["travel move"]
 
 
 def test_a_release_that_would_slacken_the_rope(tmp_path):
@@ -505,3 +594,94 @@ def test_a_release_that_would_slacken_the_rope(tmp_path):
     assert set(p3) == KEYS["phi3"] | {"slack"}
     assert p3["slack"].startswith("the rope would go slack")
     assert [t.name for t in r.simulations] == ["release"]
+
+
+BLOCK = """cranefe: 1
+name: a heavy hook block with the load on a sling below it
+plane: xz
+nodes: {{D: [0, 0, 0], S: [0, 0, 30], B: [0, 0, 10], H: [0, 0, 5]}}
+ground: [D, S]
+masses: {{B: 5000.0, H: 3000.0}}
+drums:
+  hoist: {{node: D, radius: 0.25, inertia: 500.0, brake: false}}
+ropes:
+{ropes}
+"""
+BLOCK_ROPES = ("  hoist_rope: {EA: 3.15e6, path: [hoist, S, {node: B, falls: 2}]}",
+               "  sling: {EA: 2.5e5, path: [B, H]}")
+
+
+@functools.lru_cache(maxsize=None)
+def block_reference(release):
+    """Rope forces (hoist rope, sling) of the block B (5000 kg) on 2 falls of the hoist
+    rope (k1 = EA / 70 m = 45 000 N/m, 4 k1 at B) with the load H (3000 kg) on the
+    sling (k2 = EA / 5 m = 50 000 N/m), from the static state, displacements x up:
+    m_B x_B'' = 4 k1 (u - x_B) - k2 (x_B - x_H), m_H x_H'' = k2 (x_B - x_H) + f;
+    S1 = (m_B + m_H) g / 2 + 2 k1 (u - x_B), S2 = m_H g + k2 (x_B - x_H). Hoist start
+    (release False): the hook's rigid motion u with u'' = 1 m/s^2 for 0.5 s (0.5 m/s),
+    over 2 s; release (True): half of H dropped at once (m_H -> 1500 kg, f = 1500 g,
+    u = 0) over 1.5 s. DOP853 to 1e-12, sampled every 1e-4 s (the peaks to 1e-7)."""
+    from scipy.integrate import solve_ivp
+    mb, mh, k1, k2 = 5000.0, 3000.0, 3.15e6 / 70, 2.5e5 / 5
+    acc, ramp, f, end = (0.0, 0.0, 1500 * G, 1.5) if release else (1.0, 0.5, 0.0, 2.0)
+    if release:
+        mh = 1500.0
+
+    def rhs(t, y):
+        xb, xh, vb, vh, u, du = y
+        return [vb, vh, (4 * k1 * (u - xb) - k2 * (xb - xh)) / mb,
+                (k2 * (xb - xh) + f) / mh, du, acc if t < ramp else 0.0]
+
+    t, y, y0 = [], [], np.zeros(6)
+    for a, b in ((0.0, ramp), (ramp, end)):
+        if b > a:
+            sol = solve_ivp(rhs, (a, b), y0, method="DOP853", rtol=1e-12, atol=1e-13,
+                            dense_output=True, max_step=0.01)
+            grid = np.arange(a, b, 1e-4)
+            t.append(grid)
+            y.append(sol.sol(grid))
+            y0 = sol.y[:, -1]
+    t, y = np.concatenate(t), np.hstack(y)
+    S1 = 8000 * G / 2 + 2 * k1 * (y[4] - y[0])
+    S2 = 3000 * G + k2 * (y[0] - y[1])
+    return t, S1, S2
+
+
+@pytest.mark.parametrize("order", [(0, 1), (1, 0)])
+def test_two_ropes_carry_the_load(tmp_path, order):
+    """The factor of the rope that counts among two carrying the load (either order in
+    the file): HD5's phi2 and phi5 of the hoist start are the sling's (the largest:
+    phi5 2.296 against 1.394 of the hoist rope), phi3 of releasing half the load the
+    sling's (the lowest: 0.157 against 0.449), each rope's static force its own (the
+    hoist rope 4000 g, the sling 3000 g). Tolerance 2e-3: the trapezoidal rule's phase
+    error w t (w h)^2 / 12 = 1.5e-3 at the upper mode w = 7.13 rad/s, t = 2 s, h = 5 ms
+    (measured 6e-5)."""
+    (tmp_path / "m.yaml").write_text(BLOCK.format(
+        ropes="\n".join(BLOCK_ROPES[i] for i in order)))
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: two ropes\nmodel: m.yaml\nanalysis:\n"
+                    "  type: loads\n  hoist: {drum: hoist, load: H, speed: 0.5, "
+                    "creep: 0.1, ramp: 0.5, jerk_time: 0}\n  release: {fraction: 0.5, time: 0}\n"
+                    "  drive_class: HD5\n  after_lift_off: 1.5\n  time_step: 0.005\n")
+    r = cranefe.loads(str(path), only=["phi2", "hoist", "phi3"])
+    assert [(t.name, t.duration) for t in r.simulations] == [
+        ("hoist start", 2.0), ("release", 1.5)]
+    t, S1, S2 = block_reference(False)
+    s10, s20 = 8000 * G / 2, 3000 * G
+    assert (S1.max() - s10) / s10 < (S2.max() - s20) / s20      # the sling counts
+    p5, p2 = r.factors["phi5"]["hoist"], r.factors["phi2"]
+    assert p5["rope"] == p2["rope"] == "sling"
+    assert p5["value"] == pytest.approx((S2.max() - s20) / (s20 * 1.0 / G), rel=2e-3)
+    assert p5["rigid_body_force_N"] == pytest.approx(3000 * 1.0, rel=1e-9)
+    assert p5["peak_force_N"] == pytest.approx(S2.max(), rel=2e-3)
+    assert p5["peak_time_s"] == pytest.approx(t[np.argmax(S2)], abs=0.01)
+    assert p2["value"] == pytest.approx(S2.max() / s20, rel=2e-3)
+    assert p2["peak_time_s"] == pytest.approx(t[np.argmax(S2)], abs=0.01)
+    t, S1, S2 = block_reference(True)
+    assert S2.min() / s20 < S1.min() / s10                      # the sling counts
+    p3 = r.factors["phi3"]
+    assert p3["rope"] == "sling"
+    assert p3["value"] == pytest.approx(S2.min() / s20, abs=2e-3)
+    assert p3["beta3_equivalent"] == pytest.approx((1 - S2.min() / s20) / 0.5 - 1,
+                                                   abs=2e-3 / 0.5)
+    assert p3["peak_time_s"] == pytest.approx(t[np.argmin(S2)], abs=0.01)

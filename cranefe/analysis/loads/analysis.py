@@ -19,6 +19,7 @@ import time
 
 import numpy as np
 
+from ...errors import ModelError
 from . import standard
 from .result import LoadsResult
 from .runs import (hook_per_drum, hoist_start, joint_move, lift_model, lift_off,
@@ -31,9 +32,10 @@ ALL = ("phi1", "phi2", "phi3", "phi5", "phi6")
 
 def loads(model, only=None, shapers=()):
     """Compute the factors of `model` (a model, a transient scene or a loads scene)
-    -> `LoadsResult`. only : names among ALL to compute with the fewest runs (a sweep's
-    outputs): phi2 then comes from the declared drive class's speed alone (no curve, no
-    class), phi6 with it. shapers : input shapers (ZV, ZVD, ZVDD, EI) run on every
+    -> `LoadsResult`. only : factor names (phi1-phi7) or drive names (phi5 of that
+    drive) to compute with the fewest runs (a sweep's outputs), reporting only those:
+    phi2 then comes from the declared drive class's speed alone (HD5: the hoist start),
+    phi6 from that run. shapers : input shapers (ZV, ZVD, ZVDD, EI) run on every
     slider and hinge move -> `shapers: {JOINT: {NAME: {residual_sway_deg, move_time_s,
     ...}}}` beside the unshaped move (docs/shaping.md).
 
@@ -41,11 +43,13 @@ def loads(model, only=None, shapers=()):
     whether it is wanted.
     """
     t0 = time.perf_counter()
-    want = set(only or ALL)
+    asked = set(ALL if only is None else only)   # what is reported
+    want = set(asked)                            # what is computed
     if "phi6" in want:
         want.add("phi2")
     spec0 = parse(model)
     file = model.scene_file or model.file
+    _check_only(asked, spec0, file)
     work = placed(model, spec0)
     lift = lift_model(work)
     ratio = hook_per_drum(lift, spec0.drum)
@@ -93,10 +97,11 @@ def loads(model, only=None, shapers=()):
         traces.append(trr)
         results.append(rel)
         factors["phi3"] = _phi3(lift, reduced, rel, spec, trr.name)
-    if only is None:
+    if only is None or "phi4" in want:
         factors["phi4"] = _phi4(model)
     phi5 = {}
-    if start is not None:
+    # the start also runs for HD5's phi2: phi5 of the hoist only when asked
+    if start is not None and (only is None or "phi5" in want or spec.drum in want):
         phi5[spec.drum] = _phi5_hoist(start, spec, trs.name, g, acc * ratio)
     for move in spec.moves:
         if only is None or "phi5" in want or move.joint in want:
@@ -109,13 +114,26 @@ def loads(model, only=None, shapers=()):
               for move in spec.moves} if shapers else {}
     if "phi6" in want:
         factors["phi6"] = _phi6(factors["phi2"])
-    if only is None:
+    if only is None or "phi7" in want:
         factors["phi7"] = _phi7(model)
+    if only is not None:              # phi6 needs phi2's run, reported only when asked
+        factors = {k: v for k, v in factors.items() if k in asked or k == "phi5"}
     for r in results:
         warnings += [w for w in r.warnings if not w.startswith("modes:")]
     return LoadsResult(model.name, model.scene, file, spec, ratio, factors,
                        tuple(traces), tuple(spec.assumed), tuple(dict.fromkeys(warnings)),
                        {"total": time.perf_counter() - t0}, shapers=shaped)
+
+
+def _check_only(asked, spec, file):
+    """Every name of `only=` is a factor (phi1-phi7) or a drive of the scene (the hoist
+    drum, a slider or hinge with a move)."""
+    drives = [spec.drum, *(m.joint for m in spec.moves)]
+    bad = sorted(asked - {*ALL, "phi4", "phi7", *drives})
+    if bad:
+        raise ModelError(f"unknown factor or drive {', '.join(map(repr, bad))} in "
+                         f"only=; use phi1-phi7 or a drive: {', '.join(drives)}",
+                         file, "only")
 
 
 # ----------------------------------------------------------------------- phi2

@@ -63,34 +63,43 @@ class LoadsResult:
             "message": self.message})
 
     def rows(self):
-        """(factor, case, computed, standard, from) rows of the load table."""
+        """(factor, case, computed, standard, from) rows of the load table (the factors
+        present: `only=` reports a part)."""
         f = self.factors
         out = []
-        p2 = f["phi2"]
-        for hd, p in p2["drive_classes"].items():
-            out.append(("phi2", f"{hd}, v_h = {p['v_h_m_s']:.3g} m/s", p["value"],
-                        p["standard"][p2["hoisting_class"]],
-                        f"{p['simulation']} (peak {p['peak_time_s']:.3f} s)"))
-        out.append(("phi2 class", "behaves like", None, None,
-                    f"within {p2['behaves_like']['within'] or 'none (above HC4)'}, "
-                    f"closest {p2['behaves_like']['closest']}"))
-        p1 = f["phi1"]
-        out.append(("phi1", f"lift-off, {p1.get('mass', 'rigid crane')}", p1["value"],
-                    p1["standard"], p1["simulation"] +
-                    (f" (peak {p1['peak_time_s']:.3f} s)" if "peak_time_s" in p1 else "")))
-        p3 = f["phi3"]
-        out.append(("phi3", f"dm/m = {p3['dm_over_m']:g}, release in "
-                    f"{p3['release_time_s']:g} s", p3["value"], p3["standard"],
-                    f"{p3['simulation']} (lowest {p3['peak_time_s']:.3f} s), "
-                    f"beta3 = {p3['beta3_equivalent']:.3f}"))
-        for name, p in f["phi5"].items():
+        if "phi2" in f:
+            p2 = f["phi2"]
+            for hd, p in p2["drive_classes"].items():
+                out.append(("phi2", f"{hd}, v_h = {p['v_h_m_s']:.3g} m/s", p["value"],
+                            p["standard"][p2["hoisting_class"]],
+                            f"{p['simulation']} (peak {p['peak_time_s']:.3f} s)"))
+            out.append(("phi2 class", "behaves like", None, None,
+                        f"within {p2['behaves_like']['within'] or 'none (above HC4)'}, "
+                        f"closest {p2['behaves_like']['closest']}"))
+        if "phi1" in f:
+            p1 = f["phi1"]
+            out.append(("phi1", f"lift-off, {p1.get('mass', 'rigid crane')}", p1["value"],
+                        p1["standard"], p1["simulation"] +
+                        (f" (peak {p1['peak_time_s']:.3f} s)" if "peak_time_s" in p1
+                         else "")))
+        if "phi3" in f:
+            p3 = f["phi3"]
+            out.append(("phi3", f"dm/m = {p3['dm_over_m']:g}, release in "
+                        f"{p3['release_time_s']:g} s", p3["value"], p3["standard"],
+                        f"{p3['simulation']} (lowest {p3['peak_time_s']:.3f} s), "
+                        f"beta3 = {p3['beta3_equivalent']:.3f}"))
+        for name, p in f.get("phi5", {}).items():
             out.append(("phi5", f"{name}, ramp {p['ramp_s']:g} s", p["value"],
                         "{:g}-{:g}".format(*p["standard"]),
                         f"{p['simulation']} (peak {p['peak_time_s']:.3f} s)"))
-        p6 = f["phi6"]
-        out.append(("phi6", "dynamic test", p6["value"], p6["standard"], "0.5 (1 + phi2)"))
-        out.append(("phi4", "uneven track", None, None, "not in the model"))
-        out.append(("phi7", "buffer", None, "1.25-1.6", "not in the model"))
+        if "phi6" in f:
+            p6 = f["phi6"]
+            out.append(("phi6", "dynamic test", p6["value"], p6["standard"],
+                        "0.5 (1 + phi2)"))
+        if "phi4" in f:
+            out.append(("phi4", "uneven track", None, None, "not in the model"))
+        if "phi7" in f:
+            out.append(("phi7", "buffer", None, "1.25-1.6", "not in the model"))
         return out
 
     def table(self):
