@@ -193,12 +193,6 @@ PRESETS = {
     # trapezoidal rule of the modal equations written out by hand (1-3 s)
     "transient_modal": ("cranefe/analysis/transient/modal.py",
                         ["tests/test_mutation_kills_transient_modal.py"]),
-    # loads/analysis.py: the EN 13001-2 load table of a single mass on an elastic rope
-    # by hand (phi1 on an elastic arm, phi5 of a slider move); the hinge move's test
-    # (test_loads.py, ~10 s) reaches suspension_node and the hinge branch
-    "loads_analysis": ("cranefe/analysis/loads/analysis.py",
-                       ["tests/test_mutation_kills_loads_analysis.py",
-                        "tests/test_loads.py::test_phi5_of_a_luffing_hinge"]),
     # analysis/buckling.py: critical gravity factor k/(m g l) of bars above hinges,
     # never-buckling cases, the Greenhill column (~12 s)
     "buckling": ("cranefe/analysis/buckling.py",
@@ -301,6 +295,13 @@ PRESETS = {
                   "tests/test_operation_flexible.py::test_static_tip_deflection_under_gravity",
                   "tests/test_operation_flexible.py::test_refused_cases_exit_2",
                   "tests/test_operation_flexible.py::test_lean_does_not_claim_an_elastic_structure"]),
+    # loads/analysis.py: the EN 13001-2 load table of a single mass on an elastic rope
+    # by hand, a hook block with the load on a sling (two ropes) against DOP853, phi1 of
+    # an elastic arm, phi5 of a slider move (+ ZV shaper); the hinge move's test reaches
+    # suspension_node and the hinge branch
+    "loads_analysis": ("cranefe/analysis/loads/analysis.py",
+                       ["tests/test_mutation_kills_loads_analysis.py",
+                        "tests/test_loads.py::test_phi5_of_a_luffing_hinge"]),
 }
 
 
