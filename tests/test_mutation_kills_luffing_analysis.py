@@ -278,6 +278,21 @@ def test_figures_of_the_linear_law_have_speed_jumps(tmp_path):
         standard_mean("linear", "Jp"), rel=1e-9)
 
 
+
+def test_mean_energy_of_a_law_with_breaks_by_pieces():
+    """The trapezoidal law (acceleration over tau < 0.2 and tau > 0.8, a = 6.25, top speed
+    1.25): its mean kinetic energy is the sum over the three smooth pieces, each by quad
+    (Gauss-Legendre per piece is exact to 1e-9 there; across the kinks it would not be)."""
+    lf = luffing()
+    D, acc, v = AK - A0, 6.25, 1.25
+    pieces = [(0.0, 0.2, lambda u: 0.5 * acc * u * u, lambda u: acc * u),
+              (0.2, 0.8, lambda u: 0.125 + v * (u - 0.2), lambda u: v),
+              (0.8, 1.0, lambda u: 1 - 0.5 * acc * (1 - u) ** 2, lambda u: acc * (1 - u))]
+    hand_mean = sum(_int(lambda u: 0.5 * hand(A0 + D * s0(u))["J"] * (D * s1(u)) ** 2, a, b)
+                    for a, b, s0, s1 in pieces) / TK**2
+    assert lf.mean_energy(standard_law("trapezoidal", A0, AK)) == pytest.approx(
+        hand_mean, rel=1e-9)
+
 def test_torque_of_the_sensitivity_rows_by_hand():
     """_torque: Q / (500 s') at 401 instants (the default) of the cubic law at t_k = 5 s:
     the J' alpha'^2 / 2 term is not zero inside the range."""
