@@ -221,8 +221,8 @@ class ElasticStructure:
                     "members: the moving part would ride on the undeformed frame (a "
                     "trolley travelling along an elastic jib is a moving load on a beam, "
                     "not solved yet); use structure: rigid, or anchor the elastic "
-                    "members on the moving body", self.model.scene_file or self.file,
-                    d.entry)
+                    "members on the moving body",
+                    self.model.scene_file or self.model.file, d.entry)
         self.frames = [(int(f), np.flatnonzero(node_frame == f)) for f in sorted(carrying)]
 
     def _elements(self, mech, model, e, l):

@@ -399,8 +399,8 @@ class Mechanism:
                 raise ModelError(f"rope '{rp.name}' runs over the massless free node(s) "
                                  f"{', '.join(model.node_names[i] for i in sorted(bad))}; "
                                  "operation scenes need every rope node on a body, the "
-                                 "ground or a point mass (massless blocks: not yet)", model.file,
-                                 f"ropes.{rp.name}")
+                                 "ground or a point mass (massless blocks: not yet)",
+                                 model.file, f"ropes.{rp.name}")
             rid += [len(act)] * len(rp.falls)
             act.append(k)
             a += rp.span_a.tolist()
@@ -452,8 +452,8 @@ class Mechanism:
                     raise ModelError(
                         f"with sway: false the load at node '{model.node_names[i]}' must "
                         f"hang vertically below '{model.node_names[above]}' (it is off by "
-                        f"{np.linalg.norm(hor):.4g} m); move it or turn sway on", model.file,
-                        f"nodes.{model.node_names[i]}")
+                        f"{np.linalg.norm(hor):.4g} m); move it or turn sway on",
+                        model.file, f"nodes.{model.node_names[i]}")
                 dirs.append((k, self.up.copy()))
         self.nc = len(dirs)                 # Cartesian coordinates of the point masses
         self.nu = 0 if self.flex is None else self.flex.nu    # elastic structure
@@ -1108,8 +1108,8 @@ class Mechanism:
             raise ModelError(f"the model's geometry is not a static equilibrium: the ropes "
                              f"and springs cannot hold the weight at node '{node}' there "
                              f"(unbalanced {np.abs(resid).max():.4g} N); hang the loads "
-                             "below their sheaves (an operation starts at rest)", model.file,
-                             f"nodes.{node}")
+                             "below their sheaves (an operation starts at rest)",
+                             model.file, f"nodes.{node}")
         S0 = force[:nr]
         self.N_ref = force[nr:]
         for j in np.flatnonzero(S0 < 0):

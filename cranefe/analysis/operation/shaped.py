@@ -139,8 +139,10 @@ def crane_modes(model, op, t, newton_tol=1e-10):
     kin = (X.copy(), np.zeros_like(V), np.zeros_like(A), th)
     nx, nf = mech.nx, len(mech.free)
     q = mech.q0.copy()
-    if mech.flex is not None:     # the elastic nodes, which kinematics leaves at 0, where
-        X = mech.place(t, q, np.zeros(mech.n), kin)[0]  # their frames carry them (bent as at 0)
+    if mech.flex is not None:
+        # kinematics leaves the elastic nodes at 0: place them where their frames carry
+        # them (bent as at t = 0)
+        X = mech.place(t, q, np.zeros(mech.n), kin)[0]
     if nf and mech.sway:
         H = np.eye(3) - np.outer(mech.up, mech.up)
         P = model.coords[mech.free].copy()
@@ -148,7 +150,7 @@ def crane_modes(model, op, t, newton_tol=1e-10):
             root = mech.root[k]
             if root >= 0:
                 P[k] += H @ (X[root] - model.coords[root])
-        q[:mech.nc] = mech.E.T @ P.ravel()          # the point masses (then joints, structure)
+        q[:mech.nc] = mech.E.T @ P.ravel()      # the point masses (joints, structure after)
     taut = np.ones(len(mech.ropes), bool)
     zero = np.zeros(mech.n)
     scale = model.length_scale
