@@ -10,10 +10,9 @@ Tolerance: the pose to 1e-9 (Newton stops at 1e-13 of the linkage's size, ~10 m)
 
 import numpy as np
 import pytest
+from test_mutation_kills_linkage import ALPHA_REF, BODY_NODES, NODES, _maps, drive_of
 
 from cranefe.analysis.operation.linkage import LinkageDrive
-
-from test_mutation_kills_linkage import ALPHA_REF, BODY_NODES, NODES, _maps, drive_of
 
 
 @pytest.mark.parametrize("jump", [(-15.0, 46.0), (-18.0, 44.0)])

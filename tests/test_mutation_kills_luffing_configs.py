@@ -16,7 +16,7 @@ testing; docs/testing.md "Not run yet, or not whole"):
 import math
 import os
 import tempfile
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 import pytest
@@ -238,10 +238,10 @@ def _fb_hand(alpha):
     return J, dJ, v2, dv2
 
 
-@lru_cache(maxsize=None)
+@cache
 def _fb_luffing(inertia="complete"):
     import cranefe.analysis.luffing.analysis as an
-    folder = tempfile.mkdtemp(prefix="mut8-luff-fb-")
+    folder = tempfile.mkdtemp(prefix="luff-fourbar-")
     path = os.path.join(folder, "fourbar.yaml")
     with open(path, "w") as f:
         f.write(FOURBAR)
@@ -256,7 +256,7 @@ def _quad(f, a, b):
     return quad(f, a, b, epsabs=0, epsrel=1e-13, limit=200)[0]
 
 
-@lru_cache(maxsize=None)
+@cache
 def _fb_S(m):
     """int sqrt(J + m |D'|^2) dalpha from FB_A0 to FB_AK."""
     def f(a):
@@ -265,7 +265,7 @@ def _fb_S(m):
     return _quad(f, FB_A0, FB_AK)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _fb_partial(m, b):
     """int sqrt(J + m |D'|^2) dalpha from FB_A0 to b."""
     def f(a):
@@ -274,7 +274,7 @@ def _fb_partial(m, b):
     return _quad(f, FB_A0, b)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _fb_links(m):
     """int J / sqrt(J + m |D'|^2) dalpha from FB_A0 to FB_AK."""
     def f(a):
@@ -321,8 +321,8 @@ def test_the_optimum_with_the_load_carried_on_a_coupler_curve():
     np.testing.assert_allclose(d1, S / np.sqrt(J + FB_M * v2), rtol=1e-9)
     want = -(dJ + FB_M * dv2) / (2 * (J + FB_M * v2)) * (S ** 2 / (J + FB_M * v2))
     np.testing.assert_allclose(d2, want, rtol=1e-7)
-    # the paper's inertia with the same extra: Jp = J - m_tie |..|: checked through
-    # J alpha'^2 = S^2 and alpha'' from its own ratio, with Jp from the proxy's J - (J - Jp)
+    # the paper's inertia (eq. 3) with the same extra inertia: (Jp + Jx) alpha'^2 = S^2
+    # along the law (eq. 16 integrated once), Jp read from the proxy
     lawp = lf.optimal(which="paper", extra_inertia=extra)
     al, d1, d2 = lawp.evaluate(np.linspace(0, 1, 7))
     Jp = p("Jp", al) + FB_M * (p("dx", al) ** 2 + p("dz", al) ** 2)
@@ -337,7 +337,7 @@ def test_the_sensitivity_reports_load_rows_on_a_coupler_curve(monkeypatch):
     load, each law inverted by hand on 20001 angles (cumulative trapezoid, ~1e-9 rad).
     The swing-free law and the sway simulation (their own kill tests) are stand-ins."""
     import cranefe.analysis.luffing.analysis as an
-    import cranefe.analysis.luffing.sway as sway
+    from cranefe.analysis.luffing import sway
     from cranefe.analysis.luffing.laws import standard_law
 
     def fake_sf(proxy, alpha0, alphak, t_k, H, g, guess, which="complete"):
