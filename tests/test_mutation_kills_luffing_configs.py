@@ -11,6 +11,11 @@ testing; docs/testing.md "Not run yet, or not whole"):
   and both links turn by theta about their ground hinges, X = P + Rot(theta) (X0 - P),
   dX/dalpha = Rot(theta + pi/2) (X0 - P), d2X/dalpha2 = -Rot(theta) (X0 - P), and the jib
   translates with B, X = X0 + B(alpha) - B0, without turning.
+- analysis.py (tools/mutation.py luffing_analysis): a four-bar whose coupler turns, so
+  that the jib tip runs on a coupler curve (its |dD/dalpha|^2 varies with alpha, unlike
+  on the circles of every point of a parallelogram): the load-mass law's fit
+  (`Luffing.optimal` with an extra inertia), the sensitivity report's load-mass rows,
+  and the collocation report of a scene with `inertia: paper` (see the second part).
 """
 
 import math
