@@ -10,7 +10,8 @@ Tolerance: the pose to 1e-9 (Newton stops at 1e-13 of the linkage's size, ~10 m)
 
 import numpy as np
 import pytest
-from test_mutation_kills_linkage import ALPHA_REF, BODY_NODES, NODES, _maps, drive_of
+from scipy.optimize import brentq
+from test_mutation_kills_linkage import A_NODE, ALPHA_REF, BODY_NODES, NODES, _maps, drive_of
 
 from cranefe.analysis.operation.linkage import LinkageDrive
 
@@ -39,3 +40,30 @@ def test_a_pose_far_from_the_last_comes_from_the_table(tmp_path, jump):
             assert np.allclose(X[0], R @ NODES[nd] + p, rtol=0, atol=1e-9), (b, nd)
     # the pose is kept as the next Taylor start
     assert ld._pose[0] == a2 and np.array_equal(ld._pose[1], st.q[0])
+
+
+def test_times_asked_in_any_order_give_the_hand_geometry(tmp_path):
+    """A 1.5 m stroke (alpha from 45 to 72.4 deg) asked at 40 times in random order, the
+    first two its ends: every alpha is the hand geometry's root of d(alpha) = d_ref + s(t)
+    and every body's turn theta (not only cos/sin: the range check reads theta) the hand
+    maps' angle. Before the fix, t = 9.5 s right after t = 0 was refused (Newton took the
+    whole stroke in one step, past the angles the linkage reaches), and poses carried by
+    the Taylor series over large jumps closed the loops on the other assembly or with a
+    turn off by 2 pi. Tolerance: alpha to 1e-11 rad, theta to 1e-9 (module docstring)."""
+    model, drive = drive_of(tmp_path, dist=1.5)
+    ld = LinkageDrive(model, drive, {})
+    d_ref = float(np.linalg.norm(NODES["C"] - A_NODE))
+    names = [b.name for b in model.bodies]
+    times = np.random.default_rng(1).uniform(0.0, 9.5, 40)
+    times[:2] = 0.0, 9.5
+    for t in times:
+        s = drive.motion(t)[0]
+        ref = brentq(lambda x: _maps(x)[1] - (d_ref + s), ALPHA_REF - 0.3,
+                     ALPHA_REF + 0.55, xtol=1e-15)
+        alpha, _, _, st = ld.solve(float(t))
+        assert abs(alpha - ref) < 1e-11, t
+        maps, _ = _maps(ref)
+        for b in ld.bodies:
+            R, _ = maps[names[b]]
+            th = st.q[0, 3 * ld.link.local[b] + 2]
+            assert abs(th - np.arctan2(R[1, 0], R[0, 0])) < 1e-9, (t, names[b])

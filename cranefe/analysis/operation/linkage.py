@@ -22,6 +22,13 @@ from ...model.model import GROUND
 from ..luffing.kinematics import KinState, Linkage
 
 NEWTON_MAX = 30
+# the Taylor start from the last pose only this near it (rad): farther, Newton from it can
+# close the loops on the linkage's other assembly or a turn off by 2 pi, so the pose comes
+# from the analysis' continuation table, which follows the model's branch
+TAYLOR_REACH = 4 * Linkage.STEP
+# the largest change of alpha per Newton step on the drive's length (rad): a whole long
+# stroke in one step can leave the angles the linkage reaches although the answer exists
+ALPHA_STEP = 0.1
 
 
 def _rot3(th):
@@ -81,10 +88,11 @@ class LinkageDrive:
     def _state(self, t, alpha):
         """The linkage's poses and transfer functions at alpha: Newton (the luffing
         analysis' own) from the last pose carried to alpha by its Taylor series (one or
-        two iterations), the branch and its locking checked by the analysis' table."""
+        two iterations) within TAYLOR_REACH of it, else the analysis' table; the branch
+        and its locking checked by the table."""
         try:
             self.link.cover(alpha, alpha)
-            if self._pose is None:
+            if self._pose is None or abs(alpha - self._pose[0]) > TAYLOR_REACH:
                 st = self.link.state([alpha])
             else:
                 a0, q0, dq0, ddq0 = self._pose
@@ -122,14 +130,22 @@ class LinkageDrive:
     def solve(self, t):
         """(alpha, alpha', alpha'', state) at t: the drive's length d_ref + s(t); Newton
         on alpha from the last solution carried forward by its rates (one or two poses
-        per time)."""
+        per time), each step at most ALPHA_STEP and halved back toward the last pose
+        the linkage reached when it overshoots the angles the linkage can take (a time
+        far from the last one)."""
         s, ds, dds = self.drive.motion(t)
         target = self.d_ref + s
         t0, a0, a1, a2 = self._last_solution
         dt = t - t0
         alpha = a0 + a1 * dt + 0.5 * a2 * dt * dt
+        reached = a0                        # the last solution's angle: reached
         for _ in range(NEWTON_MAX):
-            st = self._state(t, alpha)
+            try:
+                st = self._state(t, alpha)
+            except AnalysisError:
+                alpha = 0.5 * (alpha + reached)
+                continue
+            reached = alpha
             (XA, dA, ddA), (XC, dC, ddC) = self._points(st)
             D = XC - XA
             d = float(np.hypot(*D))
@@ -142,7 +158,7 @@ class LinkageDrive:
                                     "change with the boom angle); shorten the stroke")
             if abs(d - target) < 1e-13 * self.scale:
                 break
-            alpha -= (d - target) / d1
+            alpha -= float(np.clip((d - target) / d1, -ALPHA_STEP, ALPHA_STEP))
         else:
             raise AnalysisError(f"at t = {t:.6g} s Newton did not find the boom angle for "
                                 f"the linear drive '{self.drive.name}' length {target:.6g} m:"
