@@ -213,9 +213,11 @@ PRESETS = {
                      ["tests/test_mutation_kills_coordinates_ropes.py"]),
     "coords_constraints": ("cranefe/coordinates/constraints.py",
                            ["tests/test_mutation_kills_coordinates_constraints.py"]),
-    # dofmap: build_dofs is reached by all four files (rope meshes, constraints, members)
+    # dofmap: build_dofs is reached by all four files (rope meshes, constraints, members);
+    # _more: a body welded to the ground by a joint listing the ground second
     "coords_dofmap": ("cranefe/coordinates/dofmap.py",
                       ["tests/test_mutation_kills_coordinates_dofmap.py",
+                       "tests/test_mutation_kills_coordinates_dofmap_more.py",
                        "tests/test_mutation_kills_coordinates_ropes.py",
                        "tests/test_mutation_kills_coordinates_constraints.py",
                        "tests/test_mutation_kills_coordinates_members.py"]),
