@@ -100,9 +100,11 @@ PRESETS = {
                         "tests/test_mutation_kills_luffing_drive.py",
                         "tests/test_mutation_kills_luffing_proxy.py"]),
     # kinematics: the Linkage alone against the hand linkage (hand values computed once
-    # per session); the J(alpha) tests recompute their 30-digit references per mutant
+    # per session); + a parallelogram with a redundant link (pseudo-inverse branch)
     "luffing_kinematics": ("cranefe/analysis/luffing/kinematics.py",
-                           ["tests/test_mutation_kills_luffing_kinematics.py"]),
+                           ["tests/test_mutation_kills_luffing_kinematics.py",
+                            "tests/test_mutation_kills_luffing_configs.py::"
+                            "test_a_redundant_joint_is_solved_by_the_pseudo_inverse"]),
     # luffing laws and sway: the laws by hand and in mpmath; the sway against a hand
     # integration of the pendulums and a 30-digit quadrature of the residual
     "luffing_laws": ("cranefe/analysis/luffing/laws.py",
@@ -263,9 +265,11 @@ PRESETS = {
                         ["tests/test_mutation_kills_transient_scene.py"]),
     # luffing/analysis.py: a parallelogram linkage written out by hand (J, Jp, dV, the
     # rack, the tip); the swing-free law and, in analyse, the pendulums and reports are
-    # stand-ins (each has its own kill tests); ~20 s, so run with OPENBLAS_NUM_THREADS=1
+    # stand-ins (each has its own kill tests); ~20 s, so run with OPENBLAS_NUM_THREADS=1;
+    # + a four-bar whose coupler turns (tip on a coupler curve): the load-mass law
     "luffing_analysis": ("cranefe/analysis/luffing/analysis.py",
-                         ["tests/test_mutation_kills_luffing_analysis.py"]),
+                         ["tests/test_mutation_kills_luffing_analysis.py",
+                          "tests/test_mutation_kills_luffing_configs.py"]),
     # analysis/modal.py: dense, sparse (massless node condensed in the operator), rigid
     # and unstable modes, graded paths and the Cholesky fallback (coupled inertia, mass
     # contrast), the choices modes() makes and reports, drive_reduction (~15 s)
