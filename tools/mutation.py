@@ -164,9 +164,11 @@ PRESETS = {
                 "tests/test_mutation_kills_joints_chain.py"]),
     # linkage: luffing by a linear drive in the operation engine; its engine tests
     # (tests/test_operation_dyn.py, test_operation_fixes.py) are too slow per mutant:
-    # a four-bar luffed by a cylinder on its coupler against hand geometry
+    # a four-bar luffed by a cylinder on its coupler against hand geometry; poses asked
+    # far from the last one (the continuation table, times in any order)
     "linkage": ("cranefe/analysis/operation/linkage.py",
-                ["tests/test_mutation_kills_linkage.py"]),
+                ["tests/test_mutation_kills_linkage.py",
+                 "tests/test_mutation_kills_linkage_configs.py"]),
     # operation engine: the equations at a state (forces, tangents, kinematics, statics,
     # energies, powers) by hand on small scenes, no integration (~0.5 s)
     "mechanism": ("cranefe/analysis/operation/mechanism.py",
