@@ -12,10 +12,12 @@ values derived by hand:
   force is below 1 N (a 0.1 kg load);
 - phi5 of a luffing hinge away from the origin with the jib inclined (the tangent of the
   tip's circle not horizontal), and of a slew through 60 deg about an axis away from
-  the origin (the tangent turning with the jib).
+  the origin (the tangent turning with the jib);
+- phi1 of an arm carrying a 0.5 kg point mass, a 0.5 kg body and a massless body.
 """
 
 import functools
+import itertools
 
 import numpy as np
 import pytest
@@ -122,8 +124,8 @@ def test_every_runs_warnings_are_kept(tmp_path):
     assert f"{low:.4g}" == "-6131"
     assert r.warnings == (
         "1 rope element(s) start in compression, i.e. slack",
-        f"a rope's force fell to {low:.4g} N: it would go slack, which modal "
-        "superposition (linear) does not follow; use method: direct")
+        (f"a rope's force fell to {low:.4g} N: it would go slack, which modal "
+         "superposition (linear) does not follow; use method: direct"))
     assert r.to_dict()["warnings"] == list(r.warnings)
 
 
@@ -241,7 +243,7 @@ def luffing_reference(omega, ramp, distance, duration):
         return [y[1], (G + ddz) * (x - y[0]) / ROPE]
 
     y0, peak = [TIP[0], 0.0], 0.0
-    for a, b in zip(corners[:-1], corners[1:]):
+    for a, b in itertools.pairwise(corners):
         sol = solve_ivp(rhs, (a, b), y0, method="DOP853", rtol=1e-11, atol=1e-12,
                         dense_output=True)
         t = np.linspace(a, b, max(2, int((b - a) * 1000)))
@@ -252,7 +254,7 @@ def luffing_reference(omega, ramp, distance, duration):
     return peak
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def luff_case():
     """The luffing move: 0.5 deg/s reached over one pendulum period, 5 deg; the run
     lasts the move and 0.75 period (runs.joint_move: the tip 10 m above the load)."""
@@ -365,7 +367,7 @@ def slewing_reference(omega, ramp, distance, duration):
         return np.r_[y[3:], load_acc(t, y)[0] - tip_acc(t)[0]]
 
     y0, best = np.r_[0.0, 0.0, -ROPE, 0.0, 0.0, 0.0], (0.0, 0.0)
-    for a, b in zip(corners[:-1], corners[1:]):
+    for a, b in itertools.pairwise(corners):
         sol = solve_ivp(rhs, (a, b), y0, method="DOP853", rtol=1e-11, atol=1e-12,
                         dense_output=True)
         ts = np.linspace(a, b, max(2, int((b - a) * 1000)))
@@ -378,7 +380,7 @@ def slewing_reference(omega, ramp, distance, duration):
     return best
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def slew_case():
     """The slew: a trapezoid of half a pendulum period (w = sqrt(g / ROPE)) whose
     braking starts 1.5 periods after the start (the two pulses' swings add), through
@@ -419,3 +421,62 @@ def test_phi5_of_a_slew_through_a_large_angle(tmp_path):
     assert when > distance / omega + ramp                   # after the stop
     assert p["value"] == pytest.approx(peak / (RADIUS * alpha), rel=1e-2)
     assert p["peak_time_s"] == pytest.approx(when, abs=0.05)
+
+
+# --------------------------------------------------- phi1: light and massless parts
+
+ARM = """cranefe: 1
+name: an elastic arm with light parts on it
+plane: xz
+nodes:
+  O: [0.0, 0.0, 0.0]
+  T: [10.0, 0.0, 0.0]
+  D: [10.0, 0.0, -20.0]
+  H: [10.0, 0.0, -10.0]
+  C: [0.5, 0.0, 0.0]
+  E: [12.0, 0.0, 0.0]
+ground: [O, D]
+masses: {H: 2000, T: 500, C: 200, E: 0.5}
+bodies:
+  arm: {mass: 1000, com: [5.0, 0.0, 0.0], inertia: [1.0e3, 1.0e3, 1.0e3], nodes: [T, C, E]}
+  lamp: {mass: 0.5, com: [11.0, 0.0, 0.0], inertia: [0.01, 0.01, 0.01]}
+  frame: {mass: 0.0, com: [13.0, 0.0, 0.0], inertia: [0.01, 0.01, 0.01]}
+joints:
+  - {name: pivot, type: hinge, bodies: [ground, arm], at: O, axis: [0, 1, 0]}
+  - {name: lamp_fixed, type: fixed, bodies: [arm, lamp], at: T}
+  - {name: frame_fixed, type: fixed, bodies: [arm, frame], at: T}
+springs:
+  - {name: arm_spring, type: rotational, bodies: [ground, arm], at: O, axis: [0, 1, 0],
+     stiffness: 1.0e7}
+drums:
+  hoist: {node: D, radius: 0.25, inertia: 5.0, brake: false}
+ropes:
+  hoist_rope: {EA: 2.16e6, path: [hoist, T, H]}
+"""
+
+
+def test_phi1_counts_light_parts_and_leaves_out_massless_ones(tmp_path):
+    """The elastic arm of test_mutation_kills_loads_analysis.py with a 0.5 kg point mass
+    E at x = 12 m, a 0.5 kg body (a lamp) at x = 11 m and a massless frame at x = 13 m,
+    both fixed to the arm: every crane mass is listed, however light (the lamp and E),
+    a part without mass is not (the frame). All ride on one rigid arm turning about O,
+    so each one's vertical acceleration is x / 10 of the tip's at every instant: its
+    upper - 1 and 1 - lower are x / 10 of the tip's (to rounding: 1e-9), and the worst
+    mass is the farthest listed, E."""
+    (tmp_path / "arm.yaml").write_text(ARM)
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: arm\nmodel: arm.yaml\nanalysis:\n  type: loads\n"
+                    "  hoist: {drum: hoist, load: H, speed: 0.5, creep: 0.1}\n"
+                    "  after_lift_off: 0.3\n  time_step: 0.002\n")
+    p1 = cranefe.loads(str(path), only=["phi1"]).factors["phi1"]
+    by = p1["by_mass"]
+    assert set(by) == {"arm", "lamp", "T", "C", "E"}
+    assert by["lamp"]["mass_kg"] == by["E"]["mass_kg"] == 0.5
+    tip = by["T"]
+    assert tip["upper"] > 1.1                            # the arm does swing
+    for name, x in (("arm", 5.0), ("lamp", 11.0), ("C", 0.5), ("E", 12.0)):
+        assert by[name]["upper"] - 1 == pytest.approx(x / 10 * (tip["upper"] - 1),
+                                                      rel=1e-9), name
+        assert 1 - by[name]["lower"] == pytest.approx(x / 10 * (1 - tip["lower"]),
+                                                      rel=1e-9), name
+    assert p1["mass"] == "E" and p1["value"] == by["E"]["upper"]
