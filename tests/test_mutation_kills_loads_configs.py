@@ -163,6 +163,10 @@ def test_a_light_load_and_a_rope_with_no_static_force(tmp_path):
     assert f["phi2"]["rope"] == f["phi2"]["curve"][0]["rope"] == "hoist_rope"
     assert f["phi5"]["hoist"]["value"] == pytest.approx(2.0, rel=1e-4)
     assert f["phi5"]["hoist"]["rope"] == "hoist_rope"
+    # braking mirrors the start: S0 (1 - 2 a / g) = 0.44 N, low but not slack
+    assert f["phi5"]["hoist"]["braking"]["lowest_force_N"] == pytest.approx(
+        0.1 * G / 2 * (1 - 2 * 0.5 / G), rel=1e-4)
+    assert f["phi5"]["hoist"]["braking"]["slack"] is False
     assert f["phi5"]["hoist"]["rigid_body_force_N"] == pytest.approx(
         0.1 * G / 2 * 0.5 / G, rel=1e-12)
     assert f["phi3"]["value"] == pytest.approx(1 - 2 * 0.25, abs=1e-4)
@@ -186,13 +190,14 @@ nodes:
   O:   {C.tolist()}
   TIP: {TIP.tolist()}
   D:   [1.0, 0.0, 3.5]
+  S:   {((C + TIP) / 2).tolist()}
   L:   {(TIP - [0.0, 0.0, ROPE]).tolist()}
 ground: [O]
 masses:
   L: 2000
 bodies:
   jib: {{mass: 3000, com: {((C + TIP) / 2).tolist()}, inertia: [1.0e3, 1.0e5, 1.0e5],
-        nodes: [TIP, D]}}
+        nodes: [TIP, D, S]}}
 joints:
   - {{name: luffing, type: hinge, bodies: [ground, jib], at: O, axis: [0, 1, 0]}}
 springs:
@@ -202,7 +207,8 @@ drums:
   hoist: {{node: D, radius: 0.2, inertia: 5.0, brake: false, rope_reserve: 20.0,
           motor: {{rotor_inertia: 0.05, gear_ratio: 30}}}}
 ropes:
-  hoist_rope: {{EA: 5.0e7, path: [hoist, TIP, L]}}
+  hoist_rope: {{EA: 5.0e7, path: [hoist, S, TIP, L]}}
+  tie: {{EA: 1.0e6, path: [D, {{node: S, falls: 2}}]}}
 """
 
 
@@ -265,7 +271,10 @@ def luff_case():
 
 
 def test_phi5_of_an_inclined_luffing_jib_away_from_the_origin(tmp_path):
-    """The hinge at (2, 0, 3), the jib at 60 deg: the tip's circle has a vertical
+    """The hinge at (2, 0, 3), the jib at 60 deg, the rope over a sheave S halfway up
+    the jib before the tip (the load hangs from the tip, the last span's other end, not
+    from S), and a tie of 2 falls between two points of the jib listed after it (no
+    span of it reaches the load): the tip's circle has a vertical
     tangent part (JIB cos 60 = 10 m per rad) beside the horizontal one (the lever JIB
     sin 60 = 17.32 m, the tip's height above the hinge: docs/loads.md); phi5 is the
     load's horizontal force over m x lever x the angular acceleration. A trapezoid of
