@@ -489,3 +489,23 @@ def test_phi1_counts_light_parts_and_leaves_out_massless_ones(tmp_path):
         assert 1 - by[name]["lower"] == pytest.approx(x / 10 * (1 - tip["lower"]),
                                                       rel=1e-9), name
     assert p1["mass"] == "E" and p1["value"] == by["E"]["upper"]
+
+
+def test_the_warnings_of_a_joint_move_are_kept(tmp_path):
+    """A joint move's own warnings reach the result (they were dropped: only the
+    transient runs' were collected): a stay rope between two points of the cart joins
+    only a body whose motion is prescribed, which the operation engine says (its force
+    is not computed), and the travel run ends less than a swing period after the move
+    (the run lasts the move plus 0.75 of the 10 m pendulum's period)."""
+    (tmp_path / "cart.yaml").write_text(CART + "  stay: {EA: 1.0e7, path: [P, D]}\n")
+    w = np.sqrt(G / 10.0)
+    ramp = float(2 * np.pi / w)
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: t\nmodel: cart.yaml\nanalysis:\n  type: loads\n"
+                    "  hoist: {speed: 0.2}\n  drives:\n"
+                    f"    travel: {{v_max: 0.5, ramp: {ramp!r}, jerk_time: 0, "
+                    "distance: 6.0}\n")
+    r = cranefe.loads(str(path), only=["travel"])
+    assert [t.name for t in r.simulations] == ["travel move"]
+    assert any(x.startswith("rope(s) stay join only bodies") for x in r.warnings)
+    assert any("less than the swing period of L" in x for x in r.warnings)

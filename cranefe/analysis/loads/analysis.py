@@ -107,6 +107,7 @@ def loads(model, only=None, shapers=()):
         if only is None or "phi5" in want or move.joint in want:
             res, tr, a_max = joint_move(work, spec, move)
             traces.append(tr)
+            results.append(res)
             phi5[move.joint] = _phi5_joint(work, res, spec, move, tr.name, a_max)
     if phi5:
         factors["phi5"] = phi5
