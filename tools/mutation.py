@@ -19,6 +19,7 @@ Runs one worker at a time by default (the machine has 2 cores shared with others
 from __future__ import annotations
 
 import argparse
+import ast
 import os
 import re
 import signal
@@ -312,6 +313,37 @@ PRESETS = {
                         "tests/test_loads.py::test_phi5_of_a_luffing_hinge"]),
 }
 
+# modules of numba kernels: mutated with numba's JIT off (fast.available() stays True, so
+# the tests still take the compiled path, as plain Python)
+JIT_MODULES = {"cranefe/analysis/operation/fast.py", "cranefe/analysis/operation/loop.py"}
+
+
+def undecorate(path: Path) -> list[str]:
+    """`@dec` + `def f` -> `def f` ... `f = dec(f)`, the same code, in the scratch copy:
+    mutmut 3 leaves every function with a decorator other than staticmethod/classmethod
+    unmutated (properties, cached properties, the section shapes' registry, the numba
+    kernels), so without this their formulas would get no mutant. Module-level functions
+    and methods with one decorator; the assignment follows the function at its indent."""
+    src = path.read_text()
+    lines = src.split("\n")
+    edits = []
+    for parent in ast.walk(ast.parse(src)):
+        if not isinstance(parent, (ast.Module, ast.ClassDef)):
+            continue
+        for node in parent.body:
+            if not isinstance(node, ast.FunctionDef) or len(node.decorator_list) != 1:
+                continue
+            dec = node.decorator_list[0]
+            if isinstance(dec, ast.Name) and dec.id in ("staticmethod", "classmethod"):
+                continue
+            edits.append((dec.lineno, dec.end_lineno, node.end_lineno, node.col_offset,
+                          node.name, ast.get_source_segment(src, dec)))
+    for first, last, end, col, name, dec in sorted(edits, reverse=True):
+        lines.insert(end, " " * col + f"{name} = ({dec})({name})")
+        del lines[first - 1:last]
+    path.write_text("\n".join(lines))
+    return [e[4] for e in edits]
+
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__,
@@ -360,6 +392,8 @@ def main(argv=None) -> int:
             shutil.copytree(src, work / extra, ignore=shutil.ignore_patterns("__pycache__"))
         elif src.is_file():
             shutil.copy(src, work / extra)
+    for path in sorted(work.glob(module)):
+        undecorate(path)
     # a pyproject without [tool.mutmut] would shadow setup.cfg only if it had one; keep the
     # pytest settings (markers) by copying it and adding the mutmut section to setup.cfg
     shutil.copy(ROOT / "pyproject.toml", work / "pyproject.toml")
@@ -374,9 +408,11 @@ def main(argv=None) -> int:
         f"timeout_multiplier = {args.multiplier}\n"
         "use_git_change_detection = false\n")
 
+    # the numba kernels run as plain Python (their mutants are reached; nothing compiled)
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1") if module in JIT_MODULES else None
     run = subprocess.Popen([sys.executable, "-m", "mutmut", "run",
                             "--max-children", str(args.workers)], cwd=work,
-                           start_new_session=True)
+                           start_new_session=True, env=env)
     try:
         run.wait(timeout=args.minutes * 60 if args.minutes else None)
     except subprocess.TimeoutExpired:
