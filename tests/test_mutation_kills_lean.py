@@ -529,3 +529,24 @@ def test_two_torque_drums_have_their_own_columns_of_G():
     G = ev._G
     np.testing.assert_allclose(G[:, mech.nx:], [[0.5, 0.0], [0.0, 0.3]], atol=1e-15)
     np.testing.assert_allclose(np.abs(G[:, :mech.nx]).sum(1), [1.0, 1.0], rtol=1e-12)
+
+
+def test_a_level_tag_line_without_sway_has_no_dashpot():
+    """The tag line level with its guided load: its row of G is zero (r^T M^-1 r = 0, no
+    frequency, no dashpot) while the trolley stretches it; the hoist rope's dashpot by
+    hand (b = psi c / (2 pi w), w^2 = c/m)."""
+    mech = _mech("tag line", "{sway: false, damping: exact}")
+    lean = Lean(mech)
+    taut = np.array([True, True])
+    for t in (0.5, 1.5):
+        q, v = mech.q0.copy(), np.array([0.2])
+        ev = lean.evaluate(t, q, v, taut, lean.kin(t))
+        ref = mech.evaluate(t, q, v, taut)
+        np.testing.assert_allclose(ev._G[1], [0.0], atol=0)
+        assert ev.Sd[1] == 0.0 and ref.Sd[1] == 0.0
+        L = 10.0 - q[0]
+        c = 1.0e7 / L
+        b = 0.3 * c / (2 * np.pi * np.sqrt(c / 1000.0))
+        assert ev.Sd[0] == pytest.approx(b * -v[0], rel=RTOL)
+        np.testing.assert_allclose(ev.F, ref.F, rtol=1e-12)
+        assert ev.S[1] != 0.0                       # stretched by the trolley's travel
