@@ -317,6 +317,20 @@ ropes:
   r1: {EA: 1.0e6, psi: 0.2, path: [B, K]}
   r2: {EA: 5.0e5, psi: 0.3, path: [A, H]}
 """
+# a load on a running sheave: one rope of two spans, both ending at the load (its row of
+# G sums two spans)
+SHEAVE = """cranefe: 1
+name: running sheave
+plane: xz
+nodes:
+  A: [-1, 0, 10]
+  B: [1, 0, 10]
+  H: [0, 0, 0]
+ground: [A, B]
+masses: {H: 800}
+ropes:
+  r: {EA: 3.0e6, psi: 0.2, path: [A, H, B]}
+"""
 TRAP = "{type: trapezoid, distance: 2, v_max: 1, a_max: 1}"
 CASES.update({
     "v sling": lambda eff: (VSLING, _drives(f"t: {{slider: travel, profile: {TRAP}}}"), eff),
@@ -331,10 +345,13 @@ CASES.update({
         "h: {drum: hoist, profile: {type: table, speed: [[0, 0.4], [2, -0.3]]}}"), eff),
     "tag line": lambda eff: (TAG, _drives(f"t: {{slider: travel, profile: {TRAP}}}"), eff),
     "soft rope": lambda eff: (SOFT, "  duration: 1\n", eff),
+    "running sheave": lambda eff: (SHEAVE, "  duration: 1\n", eff),
 })
 EFFECTS = ["{damping: exact}", "{sway: false, damping: exact}", "{damping: none}"]
-# every case with every effect (the V sling's load is off the vertical: sway on only)
-PAIRS = [(c, e) for c in CASES for e in EFFECTS if not (c == "v sling" and "sway" in e)]
+# every case with every effect (the V sling's and the sheave's loads are off the vertical
+# below their ropes' ends: sway on only)
+PAIRS = [(c, e) for c in CASES for e in EFFECTS
+         if not (c in ("v sling", "running sheave") and "sway" in e)]
 
 
 def _mech(case, eff):
