@@ -45,7 +45,6 @@ from cranefe.analysis.operation.profiles import Motion
 from cranefe.analysis.operation.results import Recorder
 from cranefe.analysis.operation.scene import parse
 from cranefe.errors import AnalysisError
-from cranefe.model import load
 
 G = 9.81
 REL = 1e-8

@@ -262,6 +262,11 @@ PRESETS = {
     # modes, on 1-40-coordinate models by hand (state space, closed forms; ~2 s)
     "damping_analysis": ("cranefe/analysis/damping/analysis.py",
                          ["tests/test_mutation_kills_damping_analysis.py"]),
+    # damping/result.py: the damping result's properties (the weak-coupling criterion,
+    # trust, the log decrements, the errors against the exact solutions) and its document,
+    # through the damping analysis' kill tests
+    "damping_result": ("cranefe/analysis/damping/result.py",
+                       ["tests/test_mutation_kills_damping_analysis.py"]),
     # transient/scene.py: the transient scene's keys, defaults, drives, motors, time
     # functions and grounded loads, and every error's file/entry/message (parse only, ~1 s)
     "transient_scene": ("cranefe/analysis/transient/scene.py",
@@ -311,6 +316,35 @@ PRESETS = {
     "loads_analysis": ("cranefe/analysis/loads/analysis.py",
                        ["tests/test_mutation_kills_loads_analysis.py",
                         "tests/test_loads.py::test_phi5_of_a_luffing_hinge"]),
+    # operation/lean.py: Lean (the integrator's view of a mechanism) by hand and against
+    # Mechanism on 14 small scenes x sway/damping (every branch), Generic (~5 s CPU)
+    "lean": ("cranefe/analysis/operation/lean.py",
+             ["tests/test_mutation_kills_lean.py"]),
+    # operation/fast.py (numba step; this tool runs it with numba's JIT off and the kernels
+    # undecorated, see JIT_MODULES and undecorate below); a step by hand,
+    # LU against numpy, _forces and the step against Lean and the numpy Stepper (~2 s)
+    "fast_step": ("cranefe/analysis/operation/fast.py",
+                  ["tests/test_mutation_kills_lean_fast.py::test_forces_equal_lean[trolley-{damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_forces_equal_lean[winch and sling-{sway: false, damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_forces_equal_lean[v sling-{damping: none}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_forces_equal_lean[tag line-{sway: false, damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_forces_equal_lean[soft rope-{damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_forces_equal_lean[running sheave-{damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_step_equals_the_numpy_step[trolley-{damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_step_equals_the_numpy_step[winch on a trolley-{damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_step_equals_the_numpy_step[v sling-{damping: none}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_step_equals_the_numpy_step[soft rope-{damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_step_equals_the_numpy_step[tag line-{sway: false, damping: exact}]",
+                   "tests/test_mutation_kills_lean_fast.py::test_available_says_whether_numba_is_installed",
+                   "tests/test_mutation_kills_lean_fast.py::test_lu_with_pivoting_solves_as_numpy",
+                   "tests/test_mutation_kills_lean_fast.py::test_lu_refuses_singular_and_non_finite_matrices",
+                   "tests/test_mutation_kills_lean_fast.py::test_one_step_of_a_load_on_its_rope_by_hand",
+                   "tests/test_mutation_kills_lean_fast.py::test_failures_of_the_step"]),
+    # operation/loop.py (numba loop): JIT off and undecorated as fast_step;
+    # profiles by hand, runs against scipy and against the numpy loop step for step
+    # (~5 s a mutant of _run: 2192 mutants, about 3 h idle; use --minutes)
+    "loop": ("cranefe/analysis/operation/loop.py",
+             ["tests/test_mutation_kills_lean_loop.py"]),
 }
 
 # modules of numba kernels: mutated with numba's JIT off (fast.available() stays True, so
