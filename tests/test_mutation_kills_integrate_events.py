@@ -1,0 +1,206 @@
+"""Value tests of cranefe/analysis/operation/integrate.py (issue 20, mutation testing,
+third round): the configurations the first two kill files do not build, each against
+values derived by hand. Every run passes fast=False (the numpy loop of integrate.py)
+unless it tests the compiled path's hand-over itself.
+
+- the energy bookkeeping of an event step: a drum under a constant torque hoists a load
+  that falls freely on a slack rope; both accelerations are constant, so the rope goes
+  taut in closed form, and the drive's work is exactly tau x (the drum's turn), since
+  the trapezoidal rule's own update theta1 - theta0 = h (omega0 + omega1) / 2 is the
+  quadrature the recorder applies to the power tau omega (so the event step's share, a
+  tenth of the turn, is in the sum with its sign);
+- the right limits at a kink in a model with a joint coordinate and a damped rope: the
+  step after the kink starts from accelerations computed with the ropes' taut flags
+  (the dashpot force b e' of a taut rope, b = psi (EA/L) / (2 pi w)), checked against
+  Newton's law by hand from the state at the kink;
+- two drums of different radii: each drum angle's error weight is its own radius.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from test_mutation_kills_integrate import _scene, _stepper
+from test_mutation_kills_mechanism import WINCH
+
+from cranefe.analysis.operation import integrate as integ
+from cranefe.analysis.operation.integrate import simulate
+from cranefe.analysis.operation.mechanism import Mechanism
+from cranefe.analysis.operation.scene import parse
+
+G = 9.81
+
+
+# ----------------------------------------------------------------- event step's work
+
+TAU, J_DRUM, R_DRUM, EA_W, M_W = 3000.0, 10.0, 0.5, 2.0e6, 1000.0
+
+
+def test_the_event_step_enters_the_drive_work_with_its_sign():
+    """The winch (drum radius 0.5 m, inertia 10 kg m^2, 2 falls to a 1000-kg load, sway
+    off, damping psi 0.2) under a torque of 3000 N m, the load lifted 0.5 m above its
+    static place at rest: the rope is slack, the drum turns by theta = tau t^2 / (2 J)
+    = 150 t^2, the load falls freely. The rope's length L = 23.5 - 2 d + g t^2 (its
+    static length 23.5 m, d = 0.5) meets its unstretched length L0_ref - R theta /
+    lambda_ref (lambda_ref = exp(m g / 2 / EA)) at
+    t^2 = (2 d - 23.5 (1 - 1/lambda_ref)) / (g + R tau / (2 J lambda_ref)):
+    t = 0.10553 s, found to 1e-9 s (the regula falsi's stop |stretch| < 1e-13).
+    Up to it the drum angle is 150 t^2 and the load's height z0 + d - g t^2/2 to
+    round-off (constant accelerations: the rule is exact; 1e-10 m: the round-off of
+    ~100 steps at 30 m, measured 5e-12). The rope then jerks the load
+    up, goes slack again, and the drive's work stays tau (theta(T) - theta(0)) to
+    round-off (the trapezoidal identity above; the event step alone carries
+    tau x 0.10 rad = 309 J, counted with the wrong sign it is off by 618 J). The balance
+    (the recorder's kinetic, gravity and elastic energies against the work, the dashpot's
+    dissipation and the energy wound onto the drum) closes to 2e-5 of its scale (measured
+    6.6e-6: the trapezoidal quadrature of the dissipation; the slack event step alone
+    dissipates 1.9 J of 666 J, 1.1e-3 of the scale counted with the wrong sign)."""
+    model = _scene("winch_ev", WINCH, "  duration: 0.2\n  tolerance: 1.0e-8\n"
+                   "  output_step: 0.01\n  drives:\n    h: {drum: hoist, torque: 3000}\n",
+                   "{sway: false, damping: exact}")
+    mech = Mechanism(model, parse(model))
+    assert mech.n == 2 and list(mech.qdrums) == [0]
+    q = mech.q0.copy()
+    q[0] += 0.5
+    res = simulate(model, initial={"q": q, "v": np.zeros(2)}, fast=False)
+    lam = math.exp(M_W * G / 2 / EA_W)
+    tev = math.sqrt((1.0 - 23.5 * (1 - 1 / lam)) /
+                    (G + R_DRUM * TAU / (2 * J_DRUM * lam)))
+    assert [w for _, w in res.events] == ["rope r taut", "rope r slack"], res.events
+    assert res.events[0][0] == pytest.approx(tev, abs=1e-9)
+    before = res.times < tev
+    theta = res.drive_position[:, 0]
+    np.testing.assert_allclose(theta[before], TAU / (2 * J_DRUM) * res.times[before] ** 2,
+                               rtol=0, atol=1e-12)
+    np.testing.assert_allclose(res.mass_position[before, 0, 2],
+                               30.5 - G / 2 * res.times[before] ** 2, rtol=0, atol=1e-10)
+    assert theta[-1] < theta[res.times.searchsorted(0.14)]   # the load pulled the drum back
+    W = res.energy["work_drives"]
+    assert W == pytest.approx(TAU * (theta[-1] - theta[0]), rel=1e-10, abs=1e-8)
+    assert res.energy["dissipated"] > 100
+    assert res.energy_error < 2e-5, res.energy_error
+
+
+# ----------------------------------------------------------------- right limits at a kink
+
+# the pendulum on the trolley (tests/test_mutation_kills_integrate_loop.py) with a
+# 1000-kg load on a damped rope (psi 1) hanging 10 m below the trolley
+PENDL = """cranefe: 1
+name: pendulum and load on a trolley
+plane: xz
+nodes:
+  K: [0, 0, 10]
+  B: [0, 0, 8]
+  H: [0, 0, 0]
+masses: {H: 1000}
+bodies:
+  trolley: {mass: 500, com: [0, 0, 10], inertia: [10, 10, 10], nodes: [K]}
+  bob: {mass: 100, com: [0, 0, 8], inertia: [5, 5, 5], nodes: [B]}
+joints:
+  - {name: travel, type: slider, bodies: [ground, trolley], at: K, axis: [1, 0, 0],
+     range: [-1, 20]}
+  - {name: swing, type: hinge, bodies: [trolley, bob], at: K, axis: [0, 1, 0],
+     range: [-1, 1]}
+ropes:
+  hoist: {EA: 1.0e6, psi: 1.0, path: [K, H]}
+"""
+EA_P, PSI, M_P = 1.0e6, 1.0, 1000.0
+MB, DB, IOB = 100.0, 2.0, 5.0 + 100.0 * 4.0     # the bob: mass, com below K, I about K
+
+
+def test_the_step_after_a_kink_starts_from_the_right_limits_with_the_taut_flags():
+    """The trolley's trapezoid (0.5 m, 1 m/s, 4 m/s^2) has s'' = 4 before t = 0.25 s and
+    0 after; the load is thrown down at 0.3 m/s, so its damped rope (b = psi (EA/L) /
+    (2 pi w), w = sqrt(EA / (L m)): 1590 N s/m) shortens at 0.2 m/s (its dashpot's force
+    320 N) when the step ends at the kink. The step after it starts from the state there (q, v continuous) with
+    the right limits of the accelerations, by Newton's law by hand:
+    m a_H = -(S + b e') d / L + m g (d = X_H - X_K, e' = d . (V_H - V_K) / L, K at
+    (s, 10) moving at s' = 1), and the hinge I_O phi'' = m d cos(phi) s''(0.25+) -
+    m g d sin(phi) with s''(0.25+) = 0 (s'' = 4 from the left: 1.98 rad/s^2 apart)."""
+    model = _scene("pendl", PENDL, "  duration: 0.3\n  tolerance: 1.0e-8\n"
+                   "  output_step: 0.05\n  drives:\n    trolley: {slider: travel, profile: "
+                   "{type: trapezoid, distance: 0.5, v_max: 1, a_max: 4}}\n"
+                   "    sw: {hinge: swing, torque: 0}\n", "{damping: exact}")
+    mech = Mechanism(model, parse(model))
+    assert mech.n == 3 and mech.nJ == 1
+    v = np.zeros(3)
+    v[1] = -0.3
+    starts = []
+
+    class Rec(integ.Recorder):
+        def accept(self, t0, q0, v0, a0, ev0, *rest):
+            starts.append((t0, q0.copy(), v0.copy(), a0.copy()))
+            return super().accept(t0, q0, v0, a0, ev0, *rest)
+
+    saved = integ.Recorder
+    integ.Recorder = Rec
+    try:
+        res = simulate(model, initial={"q": mech.q0.copy(), "v": v}, fast=False)
+    finally:
+        integ.Recorder = saved
+    assert res.status == 0
+    at = [s for s in starts if s[0] == 0.25]
+    assert len(at) == 1
+    _, q, v, a = at[0]
+    L0 = 10.0 * math.exp(-M_P * G / EA_P)
+    d = np.array([q[0] - 0.125, q[1] - 10.0])        # K at s(0.25) = 4 x 0.25^2 / 2
+    L = math.hypot(*d)
+    edot = d @ (v[:2] - [1.0, 0.0]) / L
+    assert abs(edot) > 0.1
+    w = math.sqrt(EA_P / (L * M_P))
+    b = PSI * EA_P / L / (2 * math.pi * w)
+    S = EA_P * math.log(L / L0)
+    aH = -(S + b * edot) * d / (L * M_P) + [0.0, -G]
+    np.testing.assert_allclose(a[:2], aH, rtol=1e-9, atol=1e-9)
+    # the hinge's coordinate is the arc u = rho phi, rho = 2 m (the bob's point B, the
+    # farthest from the axis)
+    assert mech.jc[0]["rho"] == 2.0
+    phi = q[2] / 2.0
+    assert a[2] == pytest.approx(-2.0 * MB * G * DB * math.sin(phi) / IOB, rel=1e-9,
+                                 abs=1e-12)
+
+
+# ----------------------------------------------------------------- two drums
+
+WINCH2 = """cranefe: 1
+name: two winches
+plane: xz
+nodes:
+  W1: [-2, 0, 40]
+  S1: [0, 0, 40]
+  H1: [0, 0, 30]
+  W2: [8, 0, 40]
+  S2: [10, 0, 40]
+  H2: [10, 0, 30]
+ground: [W1, S1, W2, S2]
+masses: {H1: 1000, H2: 500}
+drums:
+  d1: {node: W1, radius: 0.5, inertia: 10, rope_reserve: 100}
+  d2: {node: W2, radius: 0.25, inertia: 4, rope_reserve: 100}
+ropes:
+  r1: {EA: 2.0e6, path: [d1, S1, H1]}
+  r2: {EA: 1.0e6, path: [d2, S2, H2]}
+"""
+
+
+def test_each_drum_angle_is_weighted_by_its_own_radius():
+    """Two torque-driven drums (radii 0.5 and 0.25 m): the coordinates are the two
+    loads' heights (m) and the two drum angles (rad); the position error weighs each
+    angle's acceleration difference by its drum's radius (metres of rope):
+    err = max(|da_z1|, |da_z2|, 0.5 |da_1|, 0.25 |da_2|) / tol h^2/12 (the ropes slack:
+    no force term)."""
+    model = _scene("winch2", WINCH2, "  duration: 5\n  tolerance: 1.0e-6\n  drives:\n"
+                   "    a: {drum: d1, torque: 2000}\n    b: {drum: d2, torque: 1000}\n",
+                   "{sway: false}")
+    mech, st = _stepper(model)
+    assert mech.n == 4 and list(mech.qdrums) == [0, 1] and mech.nx == 2
+    np.testing.assert_array_equal(st.wq, [1.0, 1.0, 0.5, 0.25])
+    q = mech.q0.copy()
+    a0, ev = st.accel(0.0, q, np.zeros(4), mech.taut0.copy())
+    h, tol = 0.01, 1e-6 * model.length_scale
+    slack = np.array([False, False])
+    for da, e in [([1e-3, 0, 0, 0], 1e-3), ([0, 2e-3, 0, 0], 2e-3),
+                  ([1e-3, 0, 4e-3, 0], 2e-3), ([1e-3, 0, 0, 6e-3], 1.5e-3),
+                  ([0, 0, 3e-3, 8e-3], 2e-3), ([0, 0, 1e-3, 8e-3], 2e-3)]:
+        err = st.error(h, a0, a0 + np.array(da), ev, slack)
+        assert err == pytest.approx(e / tol * h * h / 12, rel=1e-12), da
