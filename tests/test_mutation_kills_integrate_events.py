@@ -204,3 +204,79 @@ def test_each_drum_angle_is_weighted_by_its_own_radius():
                   ([0, 0, 3e-3, 8e-3], 2e-3), ([0, 0, 1e-3, 8e-3], 2e-3)]:
         err = st.error(h, a0, a0 + np.array(da), ev, slack)
         assert err == pytest.approx(e / tol * h * h / 12, rel=1e-12), da
+
+
+# ----------------------------------------------------------------- the compiled paths
+
+def _free_fall_model():
+    from test_mutation_kills_integrate import TROLLEY
+    from test_mutation_kills_integrate_loop import FREE
+    return _scene("free", TROLLEY, FREE)
+
+
+def _free_fall_checks(res):
+    """The free fall of test_mutation_kills_integrate_loop.py: 14 error-free steps
+    (doubling from 1 ms, cut at the kinks 0.25, 0.5, 0.75 s), 2 Newton iterations each,
+    the height 5 + g/2 t - g/2 t^2 exact to round-off."""
+    assert res.status == 0 and res.times[-1] == 1.0
+    assert res.steps == 14 and res.rejected == 0 and res.newton_iterations == 28
+    assert [e for _, e in res.events] == ["drive trolley starts", "drive trolley stops"]
+    z = res.mass_position[:, 0, 2]
+    np.testing.assert_allclose(z, 5.0 + G / 2 * res.times - G / 2 * res.times ** 2,
+                               atol=1e-12)
+
+
+needs_numba = pytest.mark.skipif(not integ._fast.available(), reason="numba not installed")
+
+
+@needs_numba
+def test_the_compiled_loop_takes_the_same_exact_steps():
+    """fast=None with numba: the whole loop compiled (loop.py), handed the state, the
+    step bounds (hmin, NEWTON_MAX, MAX_STEPS) and the progress callback by simulate():
+    the same 14 steps and the exact free fall; progress is called as the loop advances,
+    the last call at the end (1, 1)."""
+    from test_mutation_kills_integrate_loop import FREE_INITIAL
+    calls = []
+    res = simulate(_free_fall_model(), initial=FREE_INITIAL,
+                   progress=lambda t, T: calls.append((t, T)))
+    _free_fall_checks(res)
+    assert calls and calls[-1] == (1.0, 1.0)
+    assert all(a[0] <= b[0] for a, b in zip(calls, calls[1:]))
+
+
+@needs_numba
+def test_the_compiled_loop_stops_at_the_step_limit(monkeypatch):
+    """MAX_STEPS = 5 handed to the compiled loop: its 6th step (to 0.063 s) is one too
+    many; the failure comes back through simulate's callback as the Python loop words
+    it, with the results up to there (status 1)."""
+    from test_mutation_kills_integrate_loop import FREE_INITIAL
+    monkeypatch.setattr(integ, "MAX_STEPS", 5)
+    with pytest.raises(integ.AnalysisError) as exc:
+        simulate(_free_fall_model(), initial=FREE_INITIAL)
+    assert str(exc.value) == "more than 5 steps at t = 0.063 s; raise analysis.tolerance"
+    assert exc.value.result.status == 1 and exc.value.result.steps == 6
+
+
+@needs_numba
+def test_the_compiled_step_in_the_python_loop():
+    """fast="step": the Python loop calling fast.py's compiled step with the stepper's
+    mass, tolerances and force scales: the free fall's exact steps, and the trolley
+    pendulum (a taut rope: the force term of the estimate decides the steps) against
+    DOP853 as in test_mutation_kills_integrate.py (6e-5 m; measured 2.9e-5 m with the
+    numpy step), at most 510 steps and 3 rejections (measured 503 and 3 with the numpy
+    step), 2 Newton iterations per trial (the jerk predictor)."""
+    from test_mutation_kills_integrate import DURATION, TROLLEY, _ref_at
+    from test_mutation_kills_integrate_loop import FREE_INITIAL
+    res = simulate(_free_fall_model(), initial=FREE_INITIAL, fast="step")
+    _free_fall_checks(res)
+    model = _scene("trolley", TROLLEY, f"  duration: {DURATION}\n  tolerance: 1.0e-8\n"
+                   "  output_step: 0.05\n  drives:\n    trolley: {slider: travel, "
+                   "profile: {type: trapezoid, distance: 2, v_max: 1, a_max: 1}}\n")
+    res = simulate(model, fast="step")
+    assert res.status == 0
+    ref = np.array([_ref_at(t) for t in res.times])
+    P = res.mass_position[:, 0]
+    err = max(np.abs(P[:, 0] - ref[:, 0]).max(), np.abs(P[:, 2] - ref[:, 1]).max())
+    assert err < 6e-5, err
+    assert res.steps <= 510 and res.rejected <= 3, (res.steps, res.rejected)
+    assert res.newton_iterations == 2 * (res.steps + res.rejected)
