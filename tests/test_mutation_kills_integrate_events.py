@@ -13,13 +13,21 @@ unless it tests the compiled path's hand-over itself.
   step after the kink starts from accelerations computed with the ropes' taut flags
   (the dashpot force b e' of a taut rope, b = psi (EA/L) / (2 pi w)), checked against
   Newton's law by hand from the state at the kink;
-- two drums of different radii: each drum angle's error weight is its own radius.
+- two drums of different radii: each drum angle's error weight is its own radius;
+- the hand-over to the compiled loop and step (numba): the free fall's exact steps;
+- a long step over a slack rope, a load lighter than 1 N, a failed event search after a
+  rejection, a run stopped by a paid-out drum or two-blocking;
+- a massless block (the algebraic rows): the load below it against DOP853 on the
+  equations by hand, the block in equilibrium at every instant.
 """
 
+import functools
 import math
 
 import numpy as np
 import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 from test_mutation_kills_integrate import _scene, _stepper
 from test_mutation_kills_mechanism import WINCH
 
@@ -279,4 +287,176 @@ def test_the_compiled_step_in_the_python_loop():
     err = max(np.abs(P[:, 0] - ref[:, 0]).max(), np.abs(P[:, 2] - ref[:, 1]).max())
     assert err < 6e-5, err
     assert res.steps <= 510 and res.rejected <= 3, (res.steps, res.rejected)
+    assert res.newton_iterations == 2 * (res.steps + res.rejected)
+
+
+# ----------------------------------------------------------------- long slack steps
+
+LONG = """cranefe: 1
+name: load on a long rope
+nodes:
+  A: [0, 0, 100]
+  H: [0, 0, 0]
+ground: [A]
+masses: {H: 200}
+ropes:
+  r: {EA: 4.0e5, path: [A, H]}
+"""
+
+
+def test_a_slack_rope_adds_nothing_to_the_error_of_a_long_step():
+    """The load on a 100-m rope thrown up at 40 m/s from 1 m above its static place (the
+    rope slack: L = 99 m < L0 = 100 exp(-m g / EA) = 99.51 m) flies freely for 8.17 s
+    (back at L = L0): every step's estimate is round-off, so from 1e-3 x 8 s the steps
+    double to 4.088 s and the last, cut to the end, is 3.912 s long: accepted, the
+    slack rope's force term being zero (its h^2/12 = 1.28 alone would exceed 1). 10
+    steps, none rejected; the height 1 + 40 t - g t^2/2 to round-off (1e-9 m at 80 m)."""
+    model = _scene("long", LONG, "  duration: 8\n  tolerance: 1.0e-8\n  max_step: 8\n"
+                   "  output_step: 1\n", "{sway: false}")
+    res = simulate(model, initial={"q": np.array([1.0]), "v": np.array([40.0])}, fast=False)
+    assert res.events == [] and res.status == 0
+    assert res.steps == 10 and res.rejected == 0
+    np.testing.assert_allclose(res.mass_position[:, 0, 2],
+                               1.0 + 40.0 * res.times - G / 2 * res.times ** 2, atol=1e-9)
+
+
+def test_a_load_lighter_than_1_n_still_has_its_force_term():
+    """A 50-g load (static force 0.49 N) on a 5-m rope of EA 4e5 N: the force term of the
+    estimate, EA / (FORCE_TOL tol) |G da| / (L S0) with G = dL/dz = -1, L = 5 m, is
+    8155 times the position term |da| / (tol x 10 m): err = that x h^2/12."""
+    from test_mutation_kills_integrate import ROPE
+    model = _scene("light1", ROPE.replace("masses: {H: 200}", "masses: {H: 0.05}"),
+                   "  duration: 1\n  tolerance: 1.0e-6\n", "{sway: false}")
+    mech, st = _stepper(model)
+    S0 = 0.05 * G
+    np.testing.assert_allclose(mech.S0, [S0], rtol=1e-12)
+    assert st.fscale is not None
+    taut = mech.taut0.copy()
+    a0, ev = st.accel(0.0, mech.q0.copy(), np.zeros(1), taut)
+    h, da = 0.01, 1e-3
+    ef = 4.0e5 / (integ.FORCE_TOL * 1e-6) * da / (5.0 * S0)
+    assert ef > 1000 * da / (1e-6 * model.length_scale)
+    err = st.error(h, a0, a0 + da, ev, taut)
+    assert err == pytest.approx(ef * h * h / 12, rel=1e-9)
+
+
+# ----------------------------------------------------------------- rejections counted
+
+def test_a_failed_event_search_adds_one_rejection_to_those_before():
+    """The two loads falling onto their ropes (test_mutation_kills_integrate_loop.py):
+    the 2nd step fails (Newton, injected) and the event search's first trial fails too:
+    two rejections, counted on top of each other and of the error rejections the loop
+    meets after the events (the taut ropes' force term: counted here from the estimates
+    the loop receives); both events stay at sqrt(2 d / g)."""
+    import sys
+
+    from test_mutation_kills_integrate import DROP2
+
+    class Failing(integ.Stepper):
+        calls, searched, too_large = 0, False, 0
+
+        def step(self, *args, **kw):
+            Failing.calls += 1
+            if Failing.calls == 2:
+                return None
+            search = "_locate" in sys._getframe(1).f_code.co_name
+            if search and not Failing.searched:
+                Failing.searched = True
+                return None
+            out = super().step(*args, **kw)
+            if not search and out is not None and out[4] > 1.0:
+                Failing.too_large += 1          # the loop's own error rejections
+            return out
+
+    model = _scene("drop2c", DROP2, "  duration: 0.2022\n  tolerance: 1.0e-8\n"
+                   "  max_step: 0.5\n", "{sway: false}")
+    mech = Mechanism(model, parse(model))
+    L0 = mech.L0_ref
+    init = {"q": np.array([10.0 - L0[0] + 0.2, 10.0 - L0[1] + 0.2005]), "v": np.zeros(2)}
+    saved = integ.Stepper
+    integ.Stepper = Failing
+    try:
+        res = simulate(model, initial=init, fast=False)
+    finally:
+        integ.Stepper = saved
+    assert Failing.searched and Failing.calls > 10
+    assert Failing.too_large <= 2
+    assert res.rejected == 2 + Failing.too_large, (res.rejected, Failing.too_large)
+    assert [w for _, w in res.events] == ["rope r1 taut", "rope r2 taut"]
+    np.testing.assert_allclose([t for t, _ in res.events],
+                               [math.sqrt(0.4 / G), math.sqrt(0.401 / G)], atol=1e-9)
+
+
+# ----------------------------------------------------------------- failures in a run
+
+@pytest.mark.parametrize("case, torque, what", [
+    # the drum free (torque 0) lets the load pay out its 1 m of rope
+    ("payout", 0, "drum 'hoist' (drive 'h', torque) has paid out 1."),
+    # 30 kN m hauls the load 10 m up into its sheave S within 0.5 s
+    ("block", 30000, "the span S-H is down to "),
+])
+def test_a_run_stops_with_the_time_it_reached(case, torque, what):
+    """A drum's rope paid out (rope_reserve 1 m) and a load hauled into its sheave stop
+    the run (exit 1) with a message naming the time of the last accepted step, which is
+    the failed result's duration."""
+    text = WINCH.replace("rope_reserve: 100", "rope_reserve: 1") if case == "payout" else WINCH
+    model = _scene(f"fail_{case}", text, "  duration: 5\n  tolerance: 1.0e-6\n  drives:\n"
+                   f"    h: {{drum: hoist, torque: {torque}}}\n", "{sway: false}")
+    with pytest.raises(integ.AnalysisError) as exc, np.errstate(invalid="ignore"):
+        simulate(model, fast=False)
+    r = exc.value.result
+    assert r.status == 1 and 0 < r.duration < 1
+    msg = str(exc.value)
+    assert msg.startswith(f"at t = {r.duration:.6g} s {what}"), msg
+    assert msg.endswith(f"the results up to t = {r.duration:.6g} s are kept")
+
+
+# ----------------------------------------------------------------- a massless block
+
+EA_H, EA_S, M_B = 1.0e7, 5.0e6, 1000.0
+
+
+def _block_height(z):
+    """The massless block's height y where its two falls hold the sling (sway off):
+    2 EA_h ln((5 + 2 (20 - y)) / L0_h) = EA_s ln((y - z) / L0_s)."""
+    L0h = 25.0 * math.exp(-M_B * G / 2 / EA_H)
+    L0s = 3.0 * math.exp(-M_B * G / EA_S)
+    return brentq(lambda y: 2 * EA_H * math.log((45.0 - 2 * y) / L0h)
+                  - EA_S * math.log((y - z) / L0s), z + 2.0, 22.0, xtol=1e-15, rtol=1e-15)
+
+
+@functools.cache
+def _block_reference():
+    L0s = 3.0 * math.exp(-M_B * G / EA_S)
+
+    def f(t, s):
+        return [s[1], EA_S * math.log((_block_height(s[0]) - s[0]) / L0s) / M_B - G]
+
+    return solve_ivp(f, (0, 0.25), [7.0 - 1e-3, 0.0], method="DOP853", rtol=1e-12,
+                     atol=1e-14, dense_output=True).sol
+
+
+def test_a_load_below_a_massless_block_against_the_equations_by_hand():
+    """The load on a sling below a massless block on 2 falls (tests/test_operation_massless.py,
+    sway off: the load's and the block's heights, the block's row algebraic): released
+    1 mm below its static place (the block put into equilibrium by the stepper), the
+    load's height against DOP853 on m z'' = S_s(y(z) - z) - m g with the block's y(z)
+    from its equilibrium 2 S_h = S_s by hand, to 8e-7 m over 0.25 s (1.1 axial periods;
+    measured 3.8e-7 at tolerance 1e-8, 8.8e-8 at 1e-9, 2.0e-8 at 1e-10: tolerance^(2/3),
+    it converges). Newton: 2 iterations per trial (the block's velocity from the
+    implicit function keeps the predictor's error O(h^4))."""
+    from test_operation_massless import BLOCK
+    model = _scene("block", BLOCK, "  duration: 0.25\n  tolerance: 1.0e-8\n"
+                   "  output_step: 0.01\n", "{sway: false}")
+    mech = Mechanism(model, parse(model))
+    assert mech.n == 2 and list(mech.qy) == [1] and list(mech.M) == [M_B, 0.0]
+    assert mech.q0[1] == pytest.approx(_block_height(7.0), abs=1e-9)
+    q = mech.q0.copy()
+    q[0] -= 1e-3
+    res = simulate(model, initial={"q": q}, fast=False)
+    assert res.status == 0
+    z = res.mass_position[:, 0, 2]
+    err = np.abs(z - _block_reference()(res.times)[0]).max()
+    assert err < 8e-7, err
+    assert np.ptp(z) > 1.5e-3
     assert res.newton_iterations == 2 * (res.steps + res.rejected)
