@@ -486,3 +486,21 @@ def test_a_prescribed_drum_hauls_its_load_into_the_sheave(fast):
     assert msg.startswith(f"at t = {r.duration:.6g} s the span S-H is down to 0.0"), msg
     assert "(1.0% of its length): the load was hauled into its sheave (two-blocking)" in msg
     assert msg.endswith(f"the results up to t = {r.duration:.6g} s are kept")
+
+
+def test_a_sliver_before_a_kink_is_taken_into_the_step():
+    """The free fall below the trolley, its trapezoid's first kink put at
+    v_max / a_max = 0.25500000001 s: the doubling steps reach 0.127 s and the next
+    (0.128 s) would stop 1e-11 s short of the kink, less than 1e-9 of the step: the
+    step is stretched to end at the kink (no sliver step of 1e-11 s after it); then
+    twice that step capped by max_step 0.2 s, and the end cut: 12 steps."""
+    from test_mutation_kills_integrate import TROLLEY
+    from test_mutation_kills_integrate_loop import FREE, FREE_INITIAL, _run, _times
+    model = _scene("sliver", TROLLEY, FREE.replace(
+        "distance: 0.5, v_max: 1, a_max: 4", "distance: 0.5, v_max: 0.25500000001, a_max: 1"))
+    res, steps = _run(model, initial=FREE_INITIAL)
+    k = 0.25500000001
+    want = [0, .001, .003, .007, .015, .031, .063, .127, k, k + 0.2, k + 0.4, k + 0.6, 1.0]
+    np.testing.assert_allclose(_times(steps), want, rtol=0, atol=1e-15)
+    assert steps[7][1] == k
+    assert res.steps == 12 and res.rejected == 0
