@@ -251,12 +251,15 @@ PRESETS = {
                    ["tests/test_mutation_kills_loads_runs.py"]),
     # the numpy stepper (fast=False): one trapezoidal step and its error estimate by
     # hand, the step controller, events at free-fall times, runs against scipy; the
-    # main loop's exact step sequences (free fall, constant acceleration: every step
-    # error-free, so the sequence follows from the rules), injected Newton/error
-    # failures, a pendulum on a moving trolley (joint coordinate, kinks) (33 tests, 5 s CPU)
+    # main loop's exact step sequences (free fall, constant acceleration), injected
+    # Newton/error failures, a pendulum on a moving trolley (joint coordinate, kinks);
+    # the event step's drive work (closed-form taut event), the right limits at a kink
+    # with a joint and a damped rope, two drums, a massless block, the hand-over to the
+    # compiled loop/step (numba, its cache: the first run compiles for minutes) (48 tests)
     "integrate": ("cranefe/analysis/operation/integrate.py",
                   ["tests/test_mutation_kills_integrate.py",
-                   "tests/test_mutation_kills_integrate_loop.py"]),
+                   "tests/test_mutation_kills_integrate_loop.py",
+                   "tests/test_mutation_kills_integrate_events.py"]),
     # damping/analysis.py: the damping analysis's switch (modal / exact / both / auto by
     # Hasselman's coupling and the predicted error), its report, warnings and partner
     # modes, on 1-40-coordinate models by hand (state space, closed forms; ~2 s)
