@@ -266,10 +266,11 @@ PRESETS = {
     "damping_analysis": ("cranefe/analysis/damping/analysis.py",
                          ["tests/test_mutation_kills_damping_analysis.py"]),
     # damping/result.py: the damping result's properties (the weak-coupling criterion,
-    # trust, the log decrements, the errors against the exact solutions) and its document,
-    # through the damping analysis' kill tests
+    # trust, the log decrements, the errors against the exact solutions) and its document
+    # on a result written by hand, and through the damping analysis' kill tests
     "damping_result": ("cranefe/analysis/damping/result.py",
-                       ["tests/test_mutation_kills_damping_analysis.py"]),
+                       ["tests/test_mutation_kills_damping_result.py",
+                        "tests/test_mutation_kills_damping_analysis.py"]),
     # transient/scene.py: the transient scene's keys, defaults, drives, motors, time
     # functions and grounded loads, and every error's file/entry/message (parse only, ~1 s)
     "transient_scene": ("cranefe/analysis/transient/scene.py",
