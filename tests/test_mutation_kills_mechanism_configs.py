@@ -16,7 +16,10 @@ mechanism.py's section, "untested configurations"):
   moments about the hinge and central differences of that hand force;
 - a four-bar luffed by a linear drive (the construction in Mechanism._tree): the boom's
   tip and the load's force against the hand geometry of test_mutation_kills_linkage.py,
-  the hinges' ranges checked over the scene's duration.
+  the hinges' ranges checked over the scene's duration;
+- a joint coordinate past its range (free with and without drums by profiles, torque,
+  motor, force): the whole message, and the 1e-9 slack at either end;
+- poses() of an elastic structure's nodes with their frame (a hub off the origin).
 
 Tolerances: 1e-9 relative for closed forms (a few operations on O(1e4) numbers, the
 ln(L/L0) of a 1e-4 strain loses ~4 digits of 1e-16); positions 1e-12 m (a rotation of
@@ -44,9 +47,11 @@ from test_mutation_kills_mechanism import (
     _scene_mech,
     trolley_xs,
 )
+from test_operation_flexible import ROTOR, write
 
 from cranefe.analysis.operation.linkage import LinkageDrive
-from cranefe.errors import ModelError
+from cranefe.errors import AnalysisError, ModelError
+from cranefe.model import load
 
 G = 9.81
 RTOL = 1e-9
@@ -347,3 +352,78 @@ def test_a_spring_from_a_load_to_a_trolley_coordinate_on_a_slewing_coordinate():
     assert exc.value.message.startswith("spring 'sq' joins a load or a massless block to "
                                         "body 'trolley', which drive 't' moves as a "
                                         "coordinate;")
+
+
+# ----------------------------------------------------------------- ranges
+
+FREE_CAUSE = "the joint is free (free: true): the ropes and weights on it moved it there"
+DEG = 180 / np.pi
+RANGE_CASES = {
+    # (model, drives, the coordinate's index in q, its rho, unit factor, unit, cause)
+    "free": (ARM_DRUM,
+             ("    d: {hinge: luff, free: true}\n"
+              "    h: {drum: w, profile: {type: table, speed: [[0, 0.1]]}}\n"), 2, 4.0, DEG,
+             "deg", FREE_CAUSE + (" (drives of drums by profiles: 'h': hauling in or paying "
+                                  "out the rope that holds it)")),
+    "free, no drum": (ARM, "    d: {hinge: luff, free: true}\n", 2, 4.0, DEG, "deg",
+                      FREE_CAUSE),
+    "torque": (ARM, "    d: {hinge: luff, torque: 0}\n", 2, 4.0, DEG, "deg",
+               "a drive torque that does not stop it"),
+    "motor": (ARM,
+              ("    d: {hinge: luff, gear_ratio: 30, motor: {stall_torque: 400, "
+               "synchronous_speed: 150}}\n"), 2, 4.0, DEG, "deg",
+              "a motor that does not stop it"),
+    "force": (BASE, "    d: {slider: travel, force: 0}\n", 2, 1.0, 1.0, "m",
+              "a drive force that does not stop it"),
+}
+
+
+@pytest.mark.parametrize("case", list(RANGE_CASES))
+def test_a_joint_coordinate_past_its_range_names_time_joint_and_cause(case):
+    """The luffing arm's hinge allowed [-1, 1] rad ([-57.2958, 57.2958] deg), the trolley's
+    slider [-1, 20] m: a coordinate at 1.2 x the upper end (or below the lower end) stops
+    the run with the whole message; 1e-9 past either end passes (the check's slack)."""
+    text, drives, i, rho, f, unit, cause = RANGE_CASES[case]
+    mech = _scene_mech(text, "  duration: 2\n  drives:\n" + drives)
+    (jc,) = mech.jc
+    lo, hi = mech.model.joints[jc["joint"]].range
+    q = np.array(mech.q0, float)
+    # inside, and exactly at the 1e-9 slack (the same float operations as the check's;
+    # q / rho is exact for rho = 4 and 1)
+    for s in (lo + 1e-10, hi - 1e-10, lo - 1e-9, hi + 1e-9):
+        q[i] = rho * s
+        mech.check_range(mech.evaluate(0.25, q, np.zeros(mech.n), mech.taut0), 0.25)
+    label = "'luff' (joints[0])" if unit == "deg" else "'travel' (joints[0])"
+    for s in (1.2 * hi, lo - 0.2):
+        q[i] = rho * s
+        ev = mech.evaluate(0.25, q, np.zeros(mech.n), mech.taut0)
+        with pytest.raises(AnalysisError) as exc:
+            mech.check_range(ev, 0.25)
+        assert str(exc.value) == (
+            f"at t = 0.25 s {label} (drive 'd') reached {s * f:.6g} {unit}, past the end of "
+            f"its range [{lo * f:g}, {hi * f:g}] {unit}: the engine has no end stops; "
+            f"likely cause: {cause}; the results up to t = 0.25 s are kept")
+
+
+# ----------------------------------------------------------------- an elastic structure
+
+def test_poses_carry_the_elastic_nodes_with_their_frame(tmp_path):
+    """The spinning cantilever (tests/test_operation_flexible.py's ROTOR, two elements)
+    with its hub axis moved to O = (1, 2, 0): poses() draws the tip T undeflected with
+    the hub's frame, O + R_z(phi) (10, 0, 0), phi = 0.6 t^2 / 2 (the table's speed rises
+    from 0 to 1.2 rad/s over 2 s); the mid node is the structure's own (not a model
+    node) and is left out."""
+    text = (ROTOR.replace("O: [0, 0, 0]", "O: [1, 2, 0]").replace("T: [10.0, 0, 0]",
+                                                                  "T: [11.0, 2, 0]")
+            .replace("com: [0, 0, 0]", "com: [1, 2, 0]"))
+    model = load(write(tmp_path, text, "  duration: 3\n  drives:\n    spin: {hinge: spin, "
+                       "profile: {type: table, speed: [[0, 0], [2, 1.2]]}}\n", NEL=2))
+    mech = _mech(model)
+    assert mech.flex is not None and mech.flex.nu == 6
+    T = model.node_index["T"]
+    for t in (0.0, 1.0, 1.5):
+        phi = 0.3 * t * t
+        X = mech.poses(t, {})[1]
+        np.testing.assert_allclose(X[T], [1 + 10 * np.cos(phi), 2 + 10 * np.sin(phi), 0],
+                                   atol=1e-12)
+        np.testing.assert_allclose(X[model.node_index["O"]], [1, 2, 0], atol=1e-12)
