@@ -288,10 +288,12 @@ def test_a_four_bar_luffed_by_a_linear_drive(tmp_path, monkeypatch):
 SPRING_ON_ARM = {
     # the load on an axial spring from the tip instead of the hoist rope (before the
     # refusal: its weight did not reach the arm, the stay carried 1387 N, not 5549 N)
-    # (a rotational spring at the hinge listed first: accepted, the search goes on)
+    # (a rotational spring at the hinge and an axial one on the arm listed first: both
+    # accepted, the search goes on)
     "load": ARM.replace("  hoist: {EA: 1.0e8, psi: 0.2, path: [T, H]}\n", "")
     + ("springs:\n  - {name: rot, type: rotational, bodies: [ground, arm], at: O, "
-       "stiffness: 1.0e7}\n  - {name: sp, type: axial, nodes: [T, H], stiffness: 1.0e7}\n"),
+       "stiffness: 1.0e7}\n  - {name: arm, type: axial, nodes: [O, T], stiffness: 1.0e7}\n"
+       "  - {name: sp, type: axial, nodes: [T, H], stiffness: 1.0e7}\n"),
     # between bodies: a tie from the ground beside the stay, a rotational spring at the
     # hinge (what holds the joint in the linear analyses: no force in a scene), and a
     # spring between two nodes of the arm itself
