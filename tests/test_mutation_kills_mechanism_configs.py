@@ -39,6 +39,7 @@ from test_mutation_kills_mechanism import (
     MB,
     ML,
     SLEWING,
+    SPRING,
     TROLLEY,
     TROLLEY_DRIVE,
     _count,
@@ -241,9 +242,15 @@ def test_a_joint_coordinate_before_a_drum_coordinate():
         np.testing.assert_allclose(mech.mass_matrix(ev),
                                    np.diag([ML, ML, IO / 16, J_W]), rtol=1e-12)
         assert ev.drive_torque.tolist() == [TQ]
-    # the drum's angle and speed come from q, v after the joint coordinate
+    # the drum's angle and speed come from q, v after the joint coordinate; the tip
+    # T = O + 4 (cos, -sin) phi moves at 4 (-sin, -cos) phi', phi' = u' / rho
     v = np.array([0.1, 0.2, 0.3, 0.4])
-    theta, omega = mech.place(0.0, q, v)[2:]
+    X, V, theta, omega = mech.place(0.0, q, v)
+    phi, dphi = q[2] / 4, 0.3 / 4
+    Ti = mech.model.node_index["T"]
+    np.testing.assert_allclose(X[Ti], [4 * np.cos(phi), 0, 10 - 4 * np.sin(phi)], atol=1e-12)
+    np.testing.assert_allclose(V[Ti], [-4 * np.sin(phi) * dphi, 0, -4 * np.cos(phi) * dphi],
+                               atol=1e-12)
     assert theta.tolist() == [q[3]] and omega.tolist() == [0.4]
     assert mech.joint_state(mech.jc[0]["drive"], 0.0, q, v) == pytest.approx(
         (q[2] / 4, 0.3 / 4), rel=1e-15)
@@ -274,6 +281,7 @@ def test_a_four_bar_luffed_by_a_linear_drive(tmp_path, monkeypatch):
         Xb = R @ FOUR_BAR["B"] + p
         X, V, A, _ = mech.kinematics(t)
         np.testing.assert_allclose(X[B][[0, 2]], Xb, atol=1e-9)
+        np.testing.assert_allclose(mech.poses(t, {})[1][B][[0, 2]], Xb, atol=1e-9)
         np.testing.assert_allclose(V[B][[0, 2]], dR @ FOUR_BAR["B"] + dp, atol=1e-9)
         np.testing.assert_allclose(A[B][[0, 2]], ddR @ FOUR_BAR["B"] + ddp, atol=1e-9)
         ev = mech.evaluate(t, mech.q0, np.zeros(2), np.array([True]), damping=False)
@@ -414,10 +422,12 @@ def test_poses_carry_the_elastic_nodes_with_their_frame(tmp_path):
     with its hub axis moved to O = (1, 2, 0): poses() draws the tip T undeflected with
     the hub's frame, O + R_z(phi) (10, 0, 0), phi = 0.6 t^2 / 2 (the table's speed rises
     from 0 to 1.2 rad/s over 2 s); the mid node is the structure's own (not a model
-    node) and is left out."""
+    node) and is left out; a ground node G stays where it is."""
     text = (ROTOR.replace("O: [0, 0, 0]", "O: [1, 2, 0]").replace("T: [10.0, 0, 0]",
                                                                   "T: [11.0, 2, 0]")
-            .replace("com: [0, 0, 0]", "com: [1, 2, 0]"))
+            .replace("com: [0, 0, 0]", "com: [1, 2, 0]")
+            .replace("  T: [11.0, 2, 0]\n", "  T: [11.0, 2, 0]\n  G: [5.0, 5.0, 5.0]\n")
+            .replace("ground: []", "ground: [G]"))
     model = load(write(tmp_path, text, "  duration: 3\n  drives:\n    spin: {hinge: spin, "
                        "profile: {type: table, speed: [[0, 0], [2, 1.2]]}}\n", NEL=2))
     mech = _mech(model)
@@ -429,3 +439,33 @@ def test_poses_carry_the_elastic_nodes_with_their_frame(tmp_path):
         np.testing.assert_allclose(X[T], [1 + 10 * np.cos(phi), 2 + 10 * np.sin(phi), 0],
                                    atol=1e-12)
         np.testing.assert_allclose(X[model.node_index["O"]], [1, 2, 0], atol=1e-12)
+        np.testing.assert_allclose(X[model.node_index["G"]], [5, 5, 5], atol=0)
+
+
+# ----------------------------------------------------------------- powers and dashpots
+
+def test_the_drive_power_of_two_joint_coordinates():
+    """The slewing jib (torque 2e4 N m, rho = 10 m) and the trolley on it (force 300 N),
+    both turning / running, nothing prescribed: the drives' power is T phi' + F s'
+    (phi' = u' / rho) and nothing else (the trolley's rope end moves with its own
+    coordinates: no rope power fed from outside)."""
+    mech = _scene_mech(SLEWING, "  duration: 2\n  drives:\n    s: {hinge: slew, torque: 2.0e4}\n"
+                       "    t: {slider: travel, force: 300}\n")
+    assert mech.nJ == 2 and [jc["rho"] for jc in mech.jc] == pytest.approx([10.0, 1.0])
+    v = np.array([0.0, 0.0, 0.0, 10 * 0.05, 0.4])
+    ev = mech.evaluate(0.0, mech.q0, v, mech.taut0)
+    assert ev.P_drive == pytest.approx(2.0e4 * 0.05 + 300 * 0.4, rel=1e-9)
+
+
+def test_a_soft_spring_dashpot_below_one_radian_per_second():
+    """k = 100 N/m under 200 kg: w^2 = k / m = 0.5 (below 1), b = psi k / (2 pi w) and
+    C = b e e^T, N = N0 + b e . v along the vertical spring."""
+    text = (SPRING.replace("stiffness: 4.0e5", "stiffness: 100")
+            .replace("H: [0, 0, 5]", "H: [0, 0, -9.62]"))
+    mech = _scene_mech(text, "  duration: 1\n", "{damping: exact}")
+    m, k, psi = 200.0, 100.0, 0.4
+    b = psi * k / (2 * np.pi * np.sqrt(k / m))
+    v = np.array([0.0, 0.0, -0.3])
+    ev = mech.evaluate(0.0, mech.q0, v, np.zeros(0, bool))
+    np.testing.assert_allclose(ev.C, b * np.diag([0, 0, 1.0]), rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(ev.N, [m * G + b * 0.3], rtol=1e-12)
