@@ -291,6 +291,27 @@ class Mechanism:
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
                                  self.MJ, self._Mu(), self.J])
         self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
+        self._refuse_joint_springs(model)
+
+    def _refuse_joint_springs(self, model):
+        """An axial spring from a load or a massless block to a body that a joint
+        coordinate moves: the spring's rows have the loads' columns only, so its force
+        would not reach the coordinate (a load hung by it took its weight off the joint);
+        refused (exit 2). Springs between bodies carry no force in operation scenes
+        (what holds a joint in the linear analyses; the scene drives or holds it)."""
+        for s in model.springs:
+            if s.type != "axial":
+                continue
+            on = [i for i in s.nodes if i in self.jnodes]
+            if not on or all(self.carrier[i] != -2 for i in s.nodes):
+                continue
+            d = [jc["drive"] for jc in self.jc if on[0] in jc["nodes"]][-1]
+            raise ModelError(f"spring '{s.name}' joins a load or a massless block to body "
+                             f"'{model.bodies[self.carrier[on[0]]].name}', which drive "
+                             f"'{d.name}' moves as a coordinate; the spring's force on the "
+                             "coordinate is not computed by operation scenes yet: hang the "
+                             "load by a rope, or prescribe the joint's motion by a profile",
+                             model.file, f"springs.{s.name}")
 
     def _Mu(self):
         """The elastic nodes' lumped masses, one per elastic coordinate."""
