@@ -469,3 +469,69 @@ def test_a_soft_spring_dashpot_below_one_radian_per_second():
     ev = mech.evaluate(0.0, mech.q0, v, np.zeros(0, bool))
     np.testing.assert_allclose(ev.C, b * np.diag([0, 0, 1.0]), rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(ev.N, [m * G + b * 0.3], rtol=1e-12)
+
+
+# ------------------------------------- three prescribed joints in one chain (a gantry)
+
+GANTRY = """cranefe: 1
+name: gantry with a slewing hook block
+nodes:
+  P: [0, 0, 12]
+  K: [0, 0, 10]
+  B: [1, 0, 10]
+  H: [1, 0, 2]
+masses: {H: 800}
+bodies:
+  bridge: {mass: 4000, com: [0, 0, 12], inertia: [100, 100, 100], nodes: [P]}
+  trolley: {mass: 600, com: [0, 0, 10], inertia: [10, 10, 10], nodes: [K]}
+  block: {mass: 50, com: [0.5, 0, 10], inertia: [1, 1, 1], nodes: [B]}
+joints:
+  - {name: run, type: slider, bodies: [ground, bridge], at: P, axis: [0, 1, 0],
+     range: [-1, 10]}
+  - {name: travel, type: slider, bodies: [bridge, trolley], at: K, axis: [1, 0, 0],
+     range: [-1, 10]}
+  - {name: turn, type: hinge, bodies: [trolley, block], at: K, axis: [0, 0, 1]}
+ropes:
+  hoist: {EA: 1.0e7, path: [B, H]}
+"""
+
+
+def test_three_prescribed_joints_in_one_chain_compose_by_hand():
+    """A bridge running along y, a trolley travelling along x on it and a hook block
+    turning about z on the trolley, by trapezoids of the same times scaled (2, 1 and 0.5
+    x trolley_xs: 4 m, 2 m, 1 rad; distinct, so each joint must read its own state):
+    the bridge moves by (0, a, 0), the trolley by (b, a, 0) (its parent's translation
+    added), the block by X -> Rz(c) (X - K0) + K0 + (b, a, 0), with their
+    first and second time derivatives (Rz(s)' = s' A, A = dRz/ds; Rz'' = s'' A + s'^2
+    d2Rz/ds2). The block's node B and its velocity by the same map. Tolerance 1e-12
+    (products of O(10) numbers)."""
+    def prof(k):
+        return f"{{type: trapezoid, distance: {2 * k}, v_max: {k}, a_max: {k}}}"
+    mech = _scene_mech(GANTRY, "  duration: 4\n  drives:\n"
+                       f"    a: {{slider: run, profile: {prof(2)}}}\n"
+                       f"    b: {{slider: travel, profile: {prof(1)}}}\n"
+                       f"    c: {{hinge: turn, profile: {prof(0.5)}}}\n")
+    names = {b.name: i for i, b in enumerate(mech.model.bodies)}
+    K0 = np.array([0.0, 0.0, 10.0])
+    B0 = np.array([1.0, 0.0, 10.0])
+    for t in (0.4, 1.5, 2.7, 3.5):
+        a, b, s = (k * np.array(trolley_xs(t)) for k in (2.0, 1.0, 0.5))
+        s, ds, dds = s
+        c, n = np.cos(s), np.sin(s)
+        R = np.array([[c, -n, 0], [n, c, 0], [0, 0, 1.0]])
+        A = np.array([[-n, -c, 0], [c, -n, 0], [0, 0, 0.0]])
+        A2 = np.array([[-c, n, 0], [-n, -c, 0], [0, 0, 0.0]])
+        dR, ddR = ds * A, dds * A + ds ** 2 * A2
+        d, dd, ddd = (np.array([b[k], a[k], 0.0]) for k in range(3))
+        e_y = np.array([0.0, 1.0, 0.0])
+        want = {"bridge": (np.eye(3), 0 * A, 0 * A, a[0] * e_y, a[1] * e_y, a[2] * e_y),
+                "trolley": (np.eye(3), 0 * A, 0 * A, d, dd, ddd),
+                "block": (R, dR, ddR, K0 - R @ K0 + d, -dR @ K0 + dd, -ddR @ K0 + ddd)}
+        got = mech.body_motions(t)
+        for body, ref in want.items():
+            for g, r in zip(got[names[body]], ref):
+                assert np.allclose(g, r, rtol=0, atol=1e-12), (t, body)
+        X, V, _, _ = mech.kinematics(t)
+        b = mech.model.node_index["B"]
+        assert np.allclose(X[b], R @ (B0 - K0) + K0 + d, rtol=0, atol=1e-12), t
+        assert np.allclose(V[b], dR @ (B0 - K0) + dd, rtol=0, atol=1e-12), t

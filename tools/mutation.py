@@ -171,10 +171,16 @@ PRESETS = {
                 ["tests/test_mutation_kills_linkage.py",
                  "tests/test_mutation_kills_linkage_configs.py"]),
     # operation engine: the equations at a state (forces, tangents, kinematics, statics,
-    # energies, powers) by hand on small scenes, no integration (~0.5 s)
+    # energies, powers) by hand on small scenes, no integration; the setup's refusals; the
+    # configurations the first two files did not build (a joint's point on no body, bodies
+    # two levels below a joint coordinate, springs between bodies, a joint coordinate
+    # before a drum coordinate, a linear drive, ranges, an elastic structure's poses); the
+    # flexible kill tests reach the elastic structure's calls (evaluate, energy, powers)
     "mechanism": ("cranefe/analysis/operation/mechanism.py",
                   ["tests/test_mutation_kills_mechanism.py",
-                   "tests/test_mutation_kills_mechanism_setup.py"]),
+                   "tests/test_mutation_kills_mechanism_setup.py",
+                   "tests/test_mutation_kills_mechanism_configs.py",
+                   "tests/test_mutation_kills_flexible.py"]),
     # damping_exact: fast kill tests only (the analyses of test_values/test_damping ran
     # minutes per mutant; that set is damping_exact_broad): a 3-DOF chain against mpmath,
     # repeated/overdamped/massless cases and the eigen-search's parts by closed forms
