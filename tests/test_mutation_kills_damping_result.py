@@ -146,3 +146,11 @@ def _same(got, expect):
             assert got[k] == pytest.approx(v, rel=1e-14, abs=1e-300), k
         else:
             assert got[k] == v and type(got[k]) is type(v), k
+
+
+def test_errors_of_small_damping_ratios_are_relative():
+    """The zero floor is 1e-9 of the largest exact ratio: a steel structure's ratios of
+    1e-3 and 5e-7 still get their relative errors (0.1 and 0.2), not 'zero'."""
+    r = _result(zeta=np.array([0.0, 1.1e-3, 6e-7]),
+                exact_zeta=np.array([np.nan, 1e-3, 5e-7]))
+    assert r.error_viscous[1:] == pytest.approx([0.1, 0.2], rel=1e-12)
