@@ -215,10 +215,11 @@ def test_a_command_of_no_distance_is_refused():
     assert str(e.value) == "time-varying shaper: the command travels no distance"
 
 
-@pytest.mark.parametrize("omega2", [lambda x: 0.5 - 0.1 * x, lambda x: 0.0])
+@pytest.mark.parametrize("omega2", [lambda x: 0.5 - 0.1 * x, lambda x: 0.0,
+                                    lambda x: -1.0 if x < 1.0 else 1.0])
 def test_a_frequency_without_swing_is_refused(omega2):
-    """w^2 < 0 from 5 s on, or 0: before the fix the free swing's span was nan or inf
-    and the integration never ended."""
+    """w^2 < 0 from 5 s on, or 0, or < 0 in the move's first second only: before the fix
+    the free swing's span was nan or inf and the integration never ended."""
     with pytest.raises(AnalysisError, match=r"^time-varying shaper: w\(t\)\^2 = "):
         _shape(omega2)
 
