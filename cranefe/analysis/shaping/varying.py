@@ -41,8 +41,13 @@ from ...errors import AnalysisError, ModelError
 def half_periods(omega2, t0, t1, rtol=1e-10):
     """D(tau), rho(tau) of eq. (1) for tau on [t0, t1] (callables), from two free
     solutions integrated once (DOP853) until half a period after t1."""
+    w2min, t_min = min((omega2(t), t) for t in np.linspace(t0, t1, 50))
+    if not w2min > 0:           # no swing (l'' >= g); nan or inf would never end below
+        raise AnalysisError(f"time-varying shaper: w(t)^2 = {w2min:.6g} 1/s^2 at t = "
+                            f"{t_min:.6g} s, not positive (the length accelerates at g "
+                            f"or more, l'' >= g): there is no swing to shape")
     w0 = np.sqrt(omega2(t0))
-    span = t1 - t0 + 4 * np.pi / np.sqrt(min(omega2(t) for t in np.linspace(t0, t1, 50)))
+    span = t1 - t0 + 4 * np.pi / np.sqrt(w2min)
 
     def rhs(t, y):
         w2 = omega2(t)
