@@ -21,6 +21,7 @@ import itertools
 
 import numpy as np
 import pytest
+from test_mutation_kills_loads_analysis import CART  # the cart with a hoist drum
 
 import cranefe
 
@@ -28,27 +29,6 @@ G = 9.81
 
 
 # ----------------------------------------------------------- only= with a joint move
-
-CART = """cranefe: 1
-name: a cart on a slider, the load on a 10 m rope below it
-plane: xz
-nodes:
-  P:   [0.0, 0.0, 20.0]
-  D:   [-1.0, 0.0, 20.5]
-  L:   [0.0, 0.0, 10.0]
-ground: []
-masses:
-  L: 2000
-bodies:
-  cart: {mass: 3000, com: [0.0, 0.0, 20.0], inertia: 1.0e3, nodes: [P, D]}
-joints:
-  - {name: travel, type: slider, bodies: [ground, cart], at: P, axis: [1, 0, 0],
-     range: [-1.0, 16.0]}
-drums:
-  hoist: {node: D, radius: 0.2, inertia: 5.0, brake: false, rope_reserve: 20.0}
-ropes:
-  hoist_rope: {EA: 5.0e7, path: [hoist, P, L]}
-"""
 
 
 def test_only_phi5_runs_every_drive_and_the_hoist_drum_its_own(tmp_path):
