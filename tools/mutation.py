@@ -127,7 +127,8 @@ PRESETS = {
     # operation engine: the drive profiles and the joint inertia, by value (the engine's
     # own tests, tests/test_operation.py, take about 70 s)
     "profiles": ("cranefe/analysis/operation/profiles.py",
-                 ["tests/test_mutation_kills_profiles.py"]),
+                 ["tests/test_mutation_kills_profiles.py",
+                 "tests/test_mutation_kills_properties.py::test_motion_end_is_the_last_boundary_only_when_it_rests"]),
     # assembly/: every file of the package (a glob), with the fast model-building tests;
     # _springs: every field of the spring rows, the pattern, null space, COO step, Reuse
     "assembly": ("cranefe/assembly/*",
@@ -280,7 +281,8 @@ PRESETS = {
     # transient/scene.py: the transient scene's keys, defaults, drives, motors, time
     # functions and grounded loads, and every error's file/entry/message (parse only, ~1 s)
     "transient_scene": ("cranefe/analysis/transient/scene.py",
-                        ["tests/test_mutation_kills_transient_scene.py"]),
+                        ["tests/test_mutation_kills_transient_scene.py",
+                        "tests/test_mutation_kills_properties.py::test_transient_breakpoints_strictly_inside_the_run"]),
     # luffing/analysis.py: a parallelogram linkage written out by hand (J, Jp, dV, the
     # rack, the tip); the swing-free law and, in analyse, the pendulums and reports are
     # stand-ins (each has its own kill tests); ~20 s, so run with OPENBLAS_NUM_THREADS=1;
@@ -296,7 +298,8 @@ PRESETS = {
                "tests/test_mutation_kills_modal_graded.py",
                "tests/test_mutation_kills_modal_choices.py",
                "tests/test_graded.py::test_negative_load_stiffness_merged_locally",
-               "tests/test_mutation_kills_condense_massless_map.py"]),
+               "tests/test_mutation_kills_condense_massless_map.py",
+              "tests/test_mutation_kills_properties.py::test_modal_frequency_and_period_by_hand"]),
     # analysis/graded.py: element factor, energy, merged negative parts, massless rows,
     # Jacobi SVD; graded models against mpmath, factor contracts by hand (~20 s)
     "graded": ("cranefe/analysis/graded.py",
