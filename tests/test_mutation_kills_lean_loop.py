@@ -34,10 +34,10 @@ import pytest
 from test_mutation_kills_integrate import DROP2, DURATION, TROLLEY, _ref_at, _scene
 from test_mutation_kills_integrate_loop import _bounce_reference
 from test_mutation_kills_lean import PAIRS, _mech
+from test_operation_speed import same_run
 
-from cranefe.analysis.operation import fast
+from cranefe.analysis.operation import fast, loop
 from cranefe.analysis.operation import integrate as integ
-from cranefe.analysis.operation import loop
 from cranefe.analysis.operation.integrate import Stepper, simulate
 from cranefe.analysis.operation.lean import Lean
 from cranefe.analysis.operation.mechanism import Mechanism
@@ -65,29 +65,9 @@ def looped(monkeypatch):
 
 
 def _same_run(a, b, rel=REL):
-    """Every reported number of two runs, to `rel` of each quantity's scale."""
-    assert (a.steps, a.rejected, a.newton_iterations) == \
-        (b.steps, b.rejected, b.newton_iterations)
-    assert [w for _, w in a.events] == [w for _, w in b.events]
-    np.testing.assert_allclose([t for t, _ in b.events], [t for t, _ in a.events],
-                               rtol=rel, atol=0)
-    assert a.warnings == b.warnings and a.status == b.status
-    np.testing.assert_allclose(a.times, b.times, rtol=0, atol=1e-14)
-    for k in ("rope_force_max", "rope_force_max_time", "sway_max_deg",
-              "sway_residual_deg", "mass_position", "rope_force", "drive_position",
-              "drive_speed", "drive_torque", "sway_deg"):
-        x, y = getattr(a, k), getattr(b, k)
-        scale = np.nanmax(np.abs(x), initial=0.0) + 1e-300
-        np.testing.assert_allclose(y, x, rtol=0, atol=rel * scale, err_msg=k)
-    E = max(abs(x) for x in a.energy.values())
-    for k in a.energy:
-        assert b.energy[k] == pytest.approx(a.energy[k], rel=0, abs=rel * E), k
-    assert b.energy_error == pytest.approx(a.energy_error, rel=1e-6, abs=rel)
-    da, db = a.to_dict(), b.to_dict()
-    assert da.keys() == db.keys()
-    for k in ("events_total", "status", "message", "warnings", "steps",
-              "rejected_steps", "newton_iterations"):
-        assert da[k] == db[k], k
+    """test_operation_speed's comparison of two runs, here with the output times to
+    1e-14 s and the energy balance's error to 1e-6 of itself."""
+    same_run(a, b, rel, times_atol=1e-14, energy_rel=1e-6)
 
 
 # ----------------------------------------------------------------- profiles
