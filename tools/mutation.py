@@ -128,7 +128,8 @@ PRESETS = {
     # own tests, tests/test_operation.py, take about 70 s)
     "profiles": ("cranefe/analysis/operation/profiles.py",
                  ["tests/test_mutation_kills_profiles.py",
-                 "tests/test_mutation_kills_properties.py::test_motion_end_is_the_last_boundary_only_when_it_rests"]),
+                  "tests/test_mutation_kills_properties.py::"
+                  "test_motion_end_is_the_last_boundary_only_when_it_rests"]),
     # assembly/: every file of the package (a glob), with the fast model-building tests;
     # _springs: every field of the spring rows, the pattern, null space, COO step, Reuse
     "assembly": ("cranefe/assembly/*",
@@ -282,7 +283,8 @@ PRESETS = {
     # functions and grounded loads, and every error's file/entry/message (parse only, ~1 s)
     "transient_scene": ("cranefe/analysis/transient/scene.py",
                         ["tests/test_mutation_kills_transient_scene.py",
-                        "tests/test_mutation_kills_properties.py::test_transient_breakpoints_strictly_inside_the_run"]),
+                         "tests/test_mutation_kills_properties.py::"
+                         "test_transient_breakpoints_strictly_inside_the_run"]),
     # luffing/analysis.py: a parallelogram linkage written out by hand (J, Jp, dV, the
     # rack, the tip); the swing-free law and, in analyse, the pendulums and reports are
     # stand-ins (each has its own kill tests); ~20 s, so run with OPENBLAS_NUM_THREADS=1;
@@ -299,7 +301,8 @@ PRESETS = {
                "tests/test_mutation_kills_modal_choices.py",
                "tests/test_graded.py::test_negative_load_stiffness_merged_locally",
                "tests/test_mutation_kills_condense_massless_map.py",
-              "tests/test_mutation_kills_properties.py::test_modal_frequency_and_period_by_hand"]),
+               "tests/test_mutation_kills_properties.py::"
+               "test_modal_frequency_and_period_by_hand"]),
     # analysis/graded.py: element factor, energy, merged negative parts, massless rows,
     # Jacobi SVD; graded models against mpmath, factor contracts by hand (~20 s)
     "graded": ("cranefe/analysis/graded.py",
@@ -368,7 +371,7 @@ PRESETS = {
 JIT_MODULES = {"cranefe/analysis/operation/fast.py", "cranefe/analysis/operation/loop.py"}
 
 
-def undecorate(path: Path) -> list[str]:
+def undecorate(path: Path) -> None:
     """`@dec` + `def f` -> `def f` ... `f = dec(f)`, the same code, in the scratch copy:
     mutmut 3 leaves every function with a decorator other than staticmethod/classmethod
     unmutated (properties, cached properties, the section shapes' registry, the numba
@@ -392,7 +395,6 @@ def undecorate(path: Path) -> list[str]:
         lines.insert(end, " " * col + f"{name} = ({dec})({name})")
         del lines[first - 1:last]
     path.write_text("\n".join(lines))
-    return [e[4] for e in edits]
 
 
 def main(argv=None) -> int:
