@@ -1,4 +1,4 @@
-"""Kill tests for three configurations of cranefe/analysis/operation/mechanism.py that no
+"""Kill tests for four configurations of cranefe/analysis/operation/mechanism.py that no
 other fast test builds (issue 20, mutation testing; docs/mutation.md, mechanism.py's
 section, "result-changing, configurations no fast test builds yet"):
 
@@ -15,6 +15,10 @@ section, "result-changing, configurations no fast test builds yet"):
   energy plus the jib's strain energy EA d^2 / (2 L) (a tip displaced along the jib's
   axis: Green's strain d / L with the slopes zero), and the rows G = dL/dq = (e, -e)
   the step's force error uses (integrate's _FlexOps);
+- an elastic structure beside a joint coordinate (the spinning cantilever on its hub,
+  a force-driven trolley on the ground): the elastic coordinates after the joint's, the
+  power fed the force's alone, the energies by hand (the structure is refused only on
+  the bodies a coordinate moves or on a frame a driven joint moves on);
 - sway off with a joint coordinate and a load the coordinate does not guide: trolley A
   on a force (a coordinate) carries its load's horizontal inertia, trolley B on a
   trapezoid guides its load, whose horizontal kinetic energy the guidance feeds
@@ -31,7 +35,7 @@ import numpy as np
 import pytest
 from test_mutation_kills_flexible import DIRECT, mechanism
 from test_mutation_kills_mechanism import _scene_mech, trolley_xs
-from test_operation_flexible import write
+from test_operation_flexible import ROTOR, write
 
 from cranefe.analysis.operation.integrate import _FlexOps
 from cranefe.model import load
@@ -241,3 +245,66 @@ def test_sway_off_a_joint_coordinate_and_a_load_it_does_not_guide(t):
     T = mech.energy(ev, mech.taut0)[0]
     assert T == pytest.approx(0.5 * 1500 * 0.09 + 0.5 * 1000 * 0.04
                               + 0.5 * 800 * (ds * ds + 0.01), rel=RTOL)
+
+
+# ----------------------------------------------------------------- an elastic structure and
+# a joint coordinate
+
+def _rotor_and_trolley(tmp_path):
+    """The spinning cantilever of test_operation_flexible.py (hub at the origin turned
+    about z by phi = 0.3 t^2, gravity -9.81 z, one element) and, on the ground beside
+    it, a trolley on a force of 300 N (a joint coordinate) carrying an 800 kg load on a
+    10 m rope: the structure rides on the hub's frame, which no driven joint moves
+    anything on, so both are accepted together."""
+    text = ROTOR.replace("gravity: [0, 0, 0]", "gravity: [0, 0, -9.81]")
+    text = text.replace("  T: [10.0, 0, 0]\n", "  T: [10.0, 0, 0]\n  K: [30, 0, 10]\n"
+                        "  H2: [30, 0, 0]\nmasses: {H2: 800}\n")
+    text = text.replace("joints:\n", "  trolley: {mass: 500, com: [30, 0, 10], inertia: "
+                        "[10, 10, 10], nodes: [K]}\njoints:\n  - {name: travel, type: slider, "
+                        "bodies: [ground, trolley], at: K, axis: [1, 0, 0], range: [-5, 5]}\n")
+    text += "ropes:\n  r2: {EA: 1.0e7, path: [K, H2]}\n"
+    model = load(write(tmp_path, text, "  duration: 3\n  drives:\n    spin: {hinge: spin, "
+                       "profile: {type: table, speed: [[0, 0], [2, 1.2]]}}\n"
+                       "    f: {slider: travel, force: 300}\n", NEL=1))
+    return mechanism(model)
+
+
+def test_an_elastic_structure_beside_a_joint_coordinate(tmp_path):
+    """q = (the load's x, y, z; the trolley's s; the tip's u in the hub's axes): the
+    elastic coordinates come after the joint's. At t = 1 s (phi = 0.3, omega = 0.6) with
+    the tip at its static deflection u0 and moving at u' = (0.1, -0.05, 0.02) in the
+    hub's axes: the tip at R_z(phi) (X_T + u0); the power fed is the force's 300 s'
+    alone: the rope is on no elastic node (no rope power through the tip), the trolley's
+    rope end moves with its own coordinate, and the hub's frame feeds
+    w . m (x'' - g) = -w . R grad U = 0 (x'' from the forces; the blade's force at the
+    static deflection is the tip's weight, vertical, w horizontal). The rope force on
+    the load by hand, F_s = 300 (the rope vertical)."""
+    mech = _rotor_and_trolley(tmp_path)
+    assert (mech.nc, mech.nJ, mech.flex.nu, mech.n) == (3, 1, 3, 7)
+    assert mech.flex.labels() == ["T.ux", "T.uy", "T.uz"]
+    q = mech.q0.copy()
+    u0 = q[4:7]
+    q[2] -= 0.01                                      # the load 1 cm down
+    v = np.array([0.0, 0.0, 0.1, 0.2, 0.1, -0.05, 0.02])
+    t, phi = 1.0, 0.3
+    ev = mech.evaluate(t, q, v, mech.taut0)
+    c, s = np.cos(phi), np.sin(phi)
+    Rz = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+    T = mech.model.node_names.index("T")
+    np.testing.assert_allclose(ev.X[T], Rz @ (np.array([10.0, 0, 0]) + u0), atol=1e-12)
+    L0 = 10 * np.exp(-800 * G / 1.0e7)
+    S = 1.0e7 * np.log((10 - q[2]) / L0)
+    np.testing.assert_allclose(ev.F[:4], [0, 0, S - 800 * G, 300.0], rtol=RTOL,
+                               atol=RTOL * 800 * G)
+    assert abs(ev.P_drive - 300 * 0.2) <= 1e-9 * (60 + S * 0.1)
+    # energies: the load, the trolley (M_J = 500 kg), the tip (rho A L / 2 = 39.25 kg) at
+    # velocity omega e_z x R Y + R u' (the hub at the origin), their weights' m g z
+    mt = 7.85 * 10 / 2
+    np.testing.assert_allclose(mech.flex.me, [mt], rtol=1e-14)
+    Y = np.array([10.0, 0, 0]) + u0
+    w = np.cross([0, 0, 0.6], Rz @ Y) + Rz @ v[4:7]
+    Tk, Vg, _ = mech.energy(ev, mech.taut0)
+    assert Tk == pytest.approx(0.5 * 800 * 0.01 + 0.5 * 500 * 0.04 + 0.5 * mt * (w @ w),
+                               rel=RTOL)
+    assert Vg == pytest.approx(800 * G * q[2] + 500 * G * 10 + mt * G * (Rz @ Y)[2],
+                               rel=RTOL)
