@@ -1,4 +1,4 @@
-"""Kill tests for four configurations of cranefe/analysis/operation/mechanism.py that no
+"""Kill tests for five configurations of cranefe/analysis/operation/mechanism.py that no
 other fast test builds (issue 20, mutation testing; docs/mutation.md, mechanism.py's
 section, "result-changing, configurations no fast test builds yet"):
 
@@ -19,6 +19,9 @@ section, "result-changing, configurations no fast test builds yet"):
   a force-driven trolley on the ground): the elastic coordinates after the joint's, the
   power fed the force's alone, the energies by hand (the structure is refused only on
   the bodies a coordinate moves or on a frame a driven joint moves on);
+- three joint coordinates in one chain (the gantry's bridge, trolley and hook block on
+  forces and a torque): every node's place by hand, also without the joints' motions
+  (place(t, q, v): the positions the results record);
 - sway off with a joint coordinate and a load the coordinate does not guide: trolley A
   on a force (a coordinate) carries its load's horizontal inertia, trolley B on a
   trapezoid guides its load, whose horizontal kinetic energy the guidance feeds
@@ -35,6 +38,7 @@ import numpy as np
 import pytest
 from test_mutation_kills_flexible import DIRECT, mechanism
 from test_mutation_kills_mechanism import _scene_mech, trolley_xs
+from test_mutation_kills_mechanism_configs import GANTRY
 from test_operation_flexible import ROTOR, write
 
 from cranefe.analysis.operation.integrate import _FlexOps
@@ -308,3 +312,32 @@ def test_an_elastic_structure_beside_a_joint_coordinate(tmp_path):
                                rel=RTOL)
     assert Vg == pytest.approx(800 * G * q[2] + 500 * G * 10 + mt * G * (Rz @ Y)[2],
                                rel=RTOL)
+
+
+# ----------------------------------------------------------------- three joint coordinates
+
+def test_three_joint_coordinates_in_one_chain_place_by_hand():
+    """The gantry of test_mutation_kills_mechanism_configs.py with its three joints as
+    coordinates (the bridge and the trolley on forces, the hook block on a torque): q =
+    (the load's x, y, z; s_a, s_b, rho phi) with rho = 1 m (the block's node B from the
+    axis through K). P moves by (0, s_a, 0), K by (s_b, s_a, 0), B to
+    Rz(phi) (B0 - K0) + K0 + (s_b, s_a, 0), its velocity omega e_z x Rz(phi) (B0 - K0)
+    + (s_b', s_a', 0): from place() without the joints' motions (the positions the
+    results record, integrate's Generic.place) and from evaluate (with them)."""
+    mech = _scene_mech(GANTRY, "  duration: 4\n  drives:\n    a: {slider: run, force: 100}\n"
+                       "    b: {slider: travel, force: 50}\n    c: {hinge: turn, torque: 10}\n")
+    assert (mech.nc, mech.nJ) == (3, 3) and [jc["rho"] for jc in mech.jc] == [1, 1, 1]
+    q = mech.q0.copy()
+    q[3:6] = [0.7, 0.4, 0.3]
+    v = np.zeros(6)
+    v[3:6] = [0.1, 0.2, 0.3]
+    c, s = np.cos(0.3), np.sin(0.3)
+    want = {"P": ([0, 0.7, 12], [0, 0.1, 0]), "K": ([0.4, 0.7, 10], [0.2, 0.1, 0]),
+            "B": ([c + 0.4, s + 0.7, 10], [-0.3 * s + 0.2, 0.3 * c + 0.1, 0])}
+    X, V, _, _ = mech.place(1.0, q, v)
+    ev = mech.evaluate(1.0, q, v, mech.taut0)
+    for name, (x, w) in want.items():
+        i = mech.model.node_index[name]
+        for XX, VV in ((X, V), (ev.X, ev.V)):
+            np.testing.assert_allclose(XX[i], x, rtol=0, atol=1e-12)
+            np.testing.assert_allclose(VV[i], w, rtol=0, atol=1e-12)
