@@ -31,7 +31,10 @@ Tolerances: 1e-9 relative for closed forms (a few operations on O(1e4) numbers, 
 ln(L/L0) of a 1e-3 strain loses ~3 digits of 1e-16); central differences with step
 1e-6: truncation h^2 |F'''| ~ 1e-12 of the entries, round-off 1e-16 |F| / h ~ 1e-6 N
 against entries of 1e5-1e6: 1e-6 relative; a power that is zero: 1e-9 of S |u'| (the
-two cancelling terms' size); energies of O(1e5) J: 1e-9 relative.
+two cancelling terms' size); energies of O(1e5) J: 1e-9 relative; the Hencky energy
+EA (L ln(L/L0) - L + L0) of a 1e-3 strain cancels ~6 digits: 1e-7 relative (as
+test_mutation_kills_mechanism.py); positions and velocities 1e-12 m (rotations of O(10)
+m vectors); the unit rows dL/dq 1e-14.
 """
 
 import numpy as np
