@@ -168,20 +168,26 @@ PRESETS = {
     # linkage: luffing by a linear drive in the operation engine; its engine tests
     # (tests/test_operation_dyn.py, test_operation_fixes.py) are too slow per mutant:
     # a four-bar luffed by a cylinder on its coupler against hand geometry; poses asked
-    # far from the last one (the continuation table, times in any order)
+    # far from the last one (the continuation table, times in any order); a Newton step
+    # past the linkage's range after a reached pose (halved back toward it)
     "linkage": ("cranefe/analysis/operation/linkage.py",
                 ["tests/test_mutation_kills_linkage.py",
-                 "tests/test_mutation_kills_linkage_configs.py"]),
+                 "tests/test_mutation_kills_linkage_configs.py",
+                 "tests/test_mutation_kills_linkage_overshoot.py"]),
     # operation engine: the equations at a state (forces, tangents, kinematics, statics,
     # energies, powers) by hand on small scenes, no integration; the setup's refusals; the
     # configurations the first two files did not build (a joint's point on no body, bodies
     # two levels below a joint coordinate, springs between bodies, a joint coordinate
-    # before a drum coordinate, a linear drive, ranges, an elastic structure's poses); the
-    # flexible kill tests reach the elastic structure's calls (evaluate, energy, powers)
+    # before a drum coordinate, a linear drive, ranges, an elastic structure's poses,
+    # three prescribed joints in a chain); the flexible kill tests reach the elastic
+    # structure's calls (evaluate, energy, powers); _rare: two drum coordinates, an
+    # elastic jib with a damped rope, an elastic structure beside a joint coordinate,
+    # three joint coordinates, sway off with a load no coordinate guides
     "mechanism": ("cranefe/analysis/operation/mechanism.py",
                   ["tests/test_mutation_kills_mechanism.py",
                    "tests/test_mutation_kills_mechanism_setup.py",
                    "tests/test_mutation_kills_mechanism_configs.py",
+                   "tests/test_mutation_kills_mechanism_rare.py",
                    "tests/test_mutation_kills_flexible.py"]),
     # damping_exact: fast kill tests only (the analyses of test_values/test_damping ran
     # minutes per mutant; that set is damping_exact_broad): a 3-DOF chain against mpmath,
@@ -341,7 +347,8 @@ PRESETS = {
              ["tests/test_mutation_kills_lean.py"]),
     # operation/fast.py (numba step; this tool runs it with numba's JIT off and the kernels
     # undecorated, see JIT_MODULES and undecorate below); a step by hand,
-    # LU against numpy, _forces and the step against Lean and the numpy Stepper (~2 s)
+    # LU against numpy, _forces and the step against Lean and the numpy Stepper (~2 s);
+    # a step whose Newton matrix needs a row swap
     "fast_step": ("cranefe/analysis/operation/fast.py",
                   ["tests/test_mutation_kills_lean_fast.py::test_forces_equal_lean[trolley-{damping: exact}]",
                    "tests/test_mutation_kills_lean_fast.py::test_forces_equal_lean[winch and sling-{sway: false, damping: exact}]",
@@ -358,7 +365,8 @@ PRESETS = {
                    "tests/test_mutation_kills_lean_fast.py::test_lu_with_pivoting_solves_as_numpy",
                    "tests/test_mutation_kills_lean_fast.py::test_lu_refuses_singular_and_non_finite_matrices",
                    "tests/test_mutation_kills_lean_fast.py::test_one_step_of_a_load_on_its_rope_by_hand",
-                   "tests/test_mutation_kills_lean_fast.py::test_failures_of_the_step"]),
+                   "tests/test_mutation_kills_lean_fast.py::test_failures_of_the_step",
+                   "tests/test_mutation_kills_lean_fast_pivot.py"]),
     # operation/loop.py (numba loop): JIT off and undecorated as fast_step;
     # profiles by hand, runs against scipy and against the numpy loop step for step
     # (~5 s a mutant of _run: 2192 mutants, about 3 h idle; use --minutes)
