@@ -269,11 +269,16 @@ PRESETS = {
     # Newton/error failures, a pendulum on a moving trolley (joint coordinate, kinks);
     # the event step's drive work (closed-form taut event), the right limits at a kink
     # with a joint and a damped rope, two drums, a massless block, the hand-over to the
-    # compiled loop/step (numba, its cache: the first run compiles for minutes) (48 tests)
+    # compiled loop/step (numba, its cache: the first run compiles for minutes); an
+    # elastic structure's run (steps ending at kinks from the left, _FlexOps' force-error
+    # rows) and inextensible ropes' runs (a given state projected, a jerk with the drum's
+    # work) (53 tests)
     "integrate": ("cranefe/analysis/operation/integrate.py",
                   ["tests/test_mutation_kills_integrate.py",
                    "tests/test_mutation_kills_integrate_loop.py",
-                   "tests/test_mutation_kills_integrate_events.py"]),
+                   "tests/test_mutation_kills_integrate_events.py",
+                   "tests/test_mutation_kills_integrate_flexible.py",
+                   "tests/test_mutation_kills_integrate_inextensible.py"]),
     # damping/analysis.py: the damping analysis's switch (modal / exact / both / auto by
     # Hasselman's coupling and the predicted error), its report, warnings and partner
     # modes, on 1-40-coordinate models by hand (state space, closed forms; ~2 s)
@@ -319,12 +324,14 @@ PRESETS = {
     # operation/flexible.py: the elastic structure riding on the mechanism; one-element
     # members, moving and chained frames, a linkage body and the setup's refusals written
     # out by hand in the kill tests, plus the fast tests of tests/test_operation_flexible.py
-    # (its runs take minutes: left out)
+    # (its runs take minutes: left out); two ropes going slack in one step below an
+    # elastic tip (the event search's power terms on a motions-cache miss)
     "flexible": ("cranefe/analysis/operation/flexible.py",
                  ["tests/test_mutation_kills_flexible.py",
                   "tests/test_mutation_kills_flexible_frames.py",
                   "tests/test_mutation_kills_flexible_chain.py",
                   "tests/test_mutation_kills_flexible_setup.py",
+                  "tests/test_mutation_kills_flexible_events.py",
                   "tests/test_operation_flexible.py::test_spinning_cantilever_stiffens_southwell",
                   "tests/test_operation_flexible.py::test_linearisation_equals_the_linear_core",
                   "tests/test_operation_flexible.py::test_truss_and_spring_structure_equals_the_linear_core",
