@@ -1,0 +1,237 @@
+"""Configurations of cranefe/analysis/operation/loop.py (the compiled integration loop)
+that tests/test_mutation_kills_lean_loop.py's scenes do not build (issue 20, mutation
+testing: survivors of the loop's run that change a result there). Each scene runs
+through loop.run (numba or not: `fast.available` answers True as in the lean loop's
+tests) and is checked against values derived by hand and against the numpy loop
+(`simulate(fast=False)`, the reference, mutation-tested against hand values: docs/
+mutation.md) with test_operation_speed's comparison, every reported number to 1e-8 of
+its scale:
+
+- two ropes pulled taut in one step: both loads fall freely (exact for the trapezoidal
+  rule) onto their ropes and both crossings fall in the same step; the earlier one
+  (the shortest located step) is taken first: events at sqrt(2 d / g);
+- a trapezoid with kinks at 0.25, 0.5 and 0.75 s (before 1 s, where t (1 + 1e-14) and
+  t + 1e-14 part): the free-fall steps end at the kinks exactly (the step sequence of
+  tests/test_mutation_kills_integrate_loop.py, derived there by hand);
+- a tag line that stays stretched without sway: the trolley moves away from the tag's
+  anchor, so the rope's force rate (the cubic Hermite samples between steps) carries
+  the guided load's velocity (the span's kinematic velocity d_kin', which differs from
+  the kinematic ends' velocity v_kin there);
+- a trial step of the event search failing (Newton): the step is rejected and retried
+  at a quarter, as the numpy loop does (the failure injected into the plain-Python
+  loop: with numba the loop's functions are swapped for their Python originals);
+- the energy balance's scale: a run whose largest term is the kinetic energy (a
+  two loads thrown up on slack ropes: their kinetic energy at the start exceeds the
+  potential change and the elastic energy, no drive works) and one whose largest is the potential
+  change (a load hoisted and lowered): the energy error against the numpy loop's to 1 %
+  (the error is a small difference of large terms; rounding moves it by < 1e-4 of
+  itself, a wrong scale by the ratio of the terms).
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from test_mutation_kills_integrate import DROP2, TROLLEY, _scene
+from test_mutation_kills_integrate_loop import FREE, FREE_INITIAL, _failing
+from test_mutation_kills_lean import CASES, TAG, _drives, _scene_mech
+from test_operation_speed import same_run
+
+from cranefe.analysis.operation import fast, loop
+from cranefe.analysis.operation import integrate as integ
+from cranefe.analysis.operation.integrate import simulate
+from cranefe.analysis.operation.mechanism import Mechanism
+from cranefe.analysis.operation.scene import parse
+
+G = 9.81
+REL = 1e-8
+# the loop's functions that numba compiles (their Python originals as `py_func`)
+JITTED = ("_motion", "_kin", "_trial", "_powers", "_energy", "_hermite_max1",
+          "_force_rate", "_accept", "_stretch_k", "_sign", "_locate", "_run")
+
+
+@pytest.fixture
+def looped(monkeypatch):
+    """simulate() through loop.run (numba or not); returns the list of its calls."""
+    calls = []
+    run = loop.run
+    monkeypatch.setattr(fast, "available", lambda: True)
+
+    def spy(*a, **k):
+        calls.append(a[2])
+        return run(*a, **k)
+    monkeypatch.setattr(integ._loop, "run", spy)
+    return calls
+
+
+def _same_run(a, b, rel=REL):
+    """test_operation_speed's comparison: output times to 1e-14 s, the energy error to
+    1e-6 of itself (or `rel`)."""
+    same_run(a, b, rel, times_atol=1e-14, energy_rel=1e-6)
+
+
+def _drop2(duration):
+    """Two 100-kg loads at rest 0.2 m and 0.2005 m above their ropes' taut points (sway
+    off: they fall vertically), max_step 0.5 s: the free fall is exact, the steps double
+    from 1e-3 x duration and the step that crosses both taut points is the last one."""
+    model = _scene(f"drop2-{duration}", DROP2, f"  duration: {duration}\n"
+                   "  tolerance: 1.0e-8\n  max_step: 0.5\n", "{sway: false}")
+    L0 = Mechanism(model, parse(model)).L0_ref
+    init = {"q": np.array([10.0 - L0[0] + 0.2, 10.0 - L0[1] + 0.2005]), "v": np.zeros(2)}
+    return model, init
+
+
+def _taut_at_free_fall_times(res):
+    """The events: r1 then r2 taut where d = g t^2 / 2 (d = 0.2, 0.2005 m), to 1e-9 s
+    (the Illinois search's stop, 1e-13 of the stretch)."""
+    ev = [(t, w) for t, w in res.events if w.endswith("taut")]
+    assert [w for _, w in ev] == ["rope r1 taut", "rope r2 taut"], res.events
+    np.testing.assert_allclose([t for t, _ in ev],
+                               [math.sqrt(2 * 0.2 / G), math.sqrt(2 * 0.2005 / G)],
+                               rtol=0, atol=1e-9)
+
+
+def test_two_ropes_pulled_taut_in_one_step(looped):
+    """Both crossings in the last step (0.103 to 0.22 s): the event search locates each
+    rope's and takes the earlier (r1's, 0.2019 s), then r2's from there (0.2022 s)."""
+    model, init = _drop2(0.22)
+    res = simulate(model, initial=init)
+    assert len(looped) == 1
+    _taut_at_free_fall_times(res)
+    _same_run(simulate(model, initial=init, fast=False), res)
+
+
+def test_kinks_before_one_second_end_the_steps(looped):
+    """The free fall below a trolley moved by a trapezoid with kinks at 0.25, 0.5 and
+    0.75 s: 14 steps (1, 2, ... 64 ms, cut to each kink, max_step 0.2), 2 Newton
+    iterations each (the predictor is the solution), no rejection; the load's height
+    exact; the trolley's position from the profile."""
+    model = _scene("free", TROLLEY, FREE)
+    res = simulate(model, initial=FREE_INITIAL)
+    assert len(looped) == 1
+    assert (res.steps, res.rejected, res.newton_iterations) == (14, 0, 28)
+    assert [e for _, e in res.events] == ["drive trolley starts", "drive trolley stops"]
+    z = res.mass_position[:, 0, 2]
+    np.testing.assert_allclose(z, 5.0 + G / 2 * res.times - G / 2 * res.times ** 2,
+                               rtol=0, atol=1e-12)
+    assert res.status == 0 and res.times[-1] == 1.0
+    _same_run(simulate(model, initial=FREE_INITIAL, fast=False), res)
+
+
+# the tag line's anchor on the other side (x = -6): the trolley's 2 m travel (+x)
+# stretches it from 6 to 8 m; EA 1e4 N; no damping (with a dashpot, a rope nearly
+# perpendicular to its guided load's free direction has a near-zero frequency w, and
+# b = psi c / (2 pi w) explodes: left to the damping model, see the mutation notes)
+TAG_AWAY = TAG.replace("B: [6, 0, 0]", "B: [-6, 0, 0]").replace(
+    "tag: {EA: 1.0e5,", "tag: {EA: 1.0e4,")
+
+
+def test_tag_line_stretched_without_sway(looped):
+    """The tag line taut through the move while the guided load follows the trolley:
+    its force at the output times (cubic Hermite between steps, from the forces and
+    their rates EA/L L' at the steps' ends, L' = the trolley's speed along the tag)
+    against EA ln(L / 6 m) of the reported positions, to 0.05 N (the interpolation's
+    error, h^4 |S''''| / 384 with h <= 70 ms; a rate without the guided load's velocity
+    is off by ~EA/L x 1 m/s x h / 8 = 15 N); the numpy loop step for step."""
+    assert TAG_AWAY != TAG
+    mech = _scene_mech(TAG_AWAY, _drives("t: {slider: travel, profile: {type: trapezoid, "
+                                         "distance: 2, v_max: 1, a_max: 1}}"),
+                       "{sway: false, damping: none}")
+    model = _cut(mech.model, 3.5, 1e-7, 0.1)
+    res = simulate(model)
+    assert len(looped) == 1
+    H = res.mass_position[:, 0]
+    L = np.hypot(H[:, 0] + 6.0, H[:, 2])
+    np.testing.assert_allclose(H[:, 0], res.drive_position[:, 0], rtol=0, atol=1e-12)
+    tag = res.rope_force[:, 1]
+    np.testing.assert_allclose(tag, 1e4 * np.log(L / 6.0), rtol=0, atol=0.05)
+    assert tag[-1] == pytest.approx(1e4 * math.log(8 / 6), rel=1e-6)
+    # the tag starts at its unstretched length (no force): taut at once, never slack
+    ev = [(t, w) for t, w in res.events if w.startswith("rope")]
+    assert [w for _, w in ev] == ["rope tag taut"] and ev[0][0] < 1e-6, ev
+    # the numpy loop step for step, every number but the hoist's peak time (its force
+    # stays m g to 1e-9 of itself without sway: the time of its maximum is rounding)
+    a = simulate(model, fast=False)
+    assert (a.steps, a.rejected, a.newton_iterations) == \
+        (res.steps, res.rejected, res.newton_iterations)
+    assert [w for _, w in a.events] == [w for _, w in res.events]
+    np.testing.assert_allclose([t for t, _ in res.events], [t for t, _ in a.events],
+                               rtol=0, atol=1e-12)
+    np.testing.assert_allclose(res.times, a.times, rtol=0, atol=1e-14)
+    for k in ("rope_force", "rope_force_max", "mass_position", "drive_position"):
+        x = getattr(a, k)
+        np.testing.assert_allclose(getattr(res, k), x, rtol=0,
+                                   atol=REL * np.abs(x).max(), err_msg=k)
+    assert res.rope_force_max_time[1] == pytest.approx(a.rope_force_max_time[1], abs=1e-8)
+    assert res.energy_error == pytest.approx(a.energy_error, rel=1e-2, abs=1e-12)
+
+
+def _cut(model, duration, tol, out):
+    a = dict(model.analysis, duration=duration, tolerance=tol, output_step=out)
+    return dataclasses.replace(model, analysis=a)
+
+
+@pytest.mark.parametrize("j", [1, 2])
+def test_a_failed_trial_of_the_event_search(j, looped, monkeypatch):
+    """The two loads of test_two_ropes_pulled_taut_in_one_step in 0.2022 s: the last
+    step crosses both taut points; the event search's j-th trial (1: its full step, 2:
+    its first Illinois point) fails (Newton): the step is rejected and retried at a
+    quarter; the events stay at the free-fall times. The numpy loop with its j-th trial
+    failing (Stepper.step's call 10 + j: 9 accepted steps, the crossing step) step for
+    step; one rejection more than the run without the failure."""
+    for name in JITTED:                        # the plain-Python loop (numba or not)
+        f = getattr(loop, name)
+        monkeypatch.setattr(loop, name, getattr(f, "py_func", f))
+    model, init = _drop2(0.2022)
+    ref = simulate(model, initial=init)
+    trial, search = loop._trial, loop._locate
+    inside = {"on": False, "calls": 0}
+
+    def failing_trial(*args):
+        out = trial(*args)
+        if inside["on"]:
+            inside["calls"] += 1
+            if inside["calls"] == j:
+                return (1,) + tuple(out[1:])
+        return out
+
+    def locate(*args):
+        inside["on"] = True
+        try:
+            return search(*args)
+        finally:
+            inside["on"] = False
+    monkeypatch.setattr(loop, "_trial", failing_trial)
+    monkeypatch.setattr(loop, "_locate", locate)
+    res = simulate(model, initial=init)
+    assert len(looped) == 2 and inside["calls"] > j
+    _taut_at_free_fall_times(ref)
+    _taut_at_free_fall_times(res)
+    assert res.rejected == ref.rejected + 1
+    monkeypatch.setattr(integ, "Stepper", _failing({10 + j}))
+    _same_run(simulate(model, initial=init, fast=False), res)
+
+
+@pytest.mark.parametrize("name", ["kinetic", "potential"])
+def test_energy_error_scale(name, looped):
+    """The energy error |dE - W + D + W_wound| / max(|W|, |D|, max T, max |V - V0|,
+    max U) against the numpy loop's to 1 %. kinetic: two 100-kg loads thrown up on
+    their slack ropes at 2 and 1 m/s (no drive: W = 0; max T = 250 J at the start, max
+    |V - V0| = 200 J at 0.2 s, the second rope catching its load at 1 m/s); potential:
+    the winch hoists its 1000-kg load for 2 s and lowers it (max |V - V0| = 609 J at
+    2 s, |W| = 480 J at the end, max U = 202 J, max T = 17 J)."""
+    if name == "kinetic":
+        model = _scene("bounce", DROP2, "  duration: 0.3\n  tolerance: 1.0e-6\n"
+                       "  output_step: 0.05\n", "{sway: false}")
+        mech = Mechanism(model, parse(model))
+        init = {"q": mech.q0.copy(), "v": np.array([2.0, 1.0])}
+    else:
+        mech = _scene_mech(*CASES["winch"]("{damping: none}"))
+        model = _cut(mech.model, 3.0, 1e-6, 0.5)
+        init = None
+    res = simulate(model, initial=init)
+    a = simulate(model, initial=init, fast=False)
+    assert len(looped) == 1
+    assert res.energy_error == pytest.approx(a.energy_error, rel=1e-2, abs=0)
+    _same_run(a, res, 1e-6)
