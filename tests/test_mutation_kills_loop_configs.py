@@ -35,7 +35,7 @@ import numpy as np
 import pytest
 from test_mutation_kills_integrate import DROP2, TROLLEY, _scene
 from test_mutation_kills_integrate_loop import FREE, FREE_INITIAL, _failing
-from test_mutation_kills_lean import CASES, TAG, _drives, _scene_mech
+from test_mutation_kills_lean import CASES, TAG, TWO_DRUMS, _drives, _scene_mech
 from test_operation_speed import same_run
 
 from cranefe.analysis.operation import fast, loop
@@ -272,3 +272,27 @@ def test_two_guided_loads_kinetic_energy(looped):
     assert e["kinetic_final"] == pytest.approx(750.0, rel=1e-9)
     assert e["work_drives"] == pytest.approx(750.0, rel=1e-9)
     _same_but_peak_times(simulate(model, fast=False), res, [])
+
+
+def test_two_profile_drums(looped):
+    """Two winches, each winding its own rope by a profile (d1 at 0.4 rad/s, d2 at
+    -0.5 rad/s, both from rest at once): each rope's unstretched length L0 = L0_ref - R theta /
+    lambda_ref takes its own drum's angle (the sum over the drums of W theta, zero for
+    the other drum). The drums' angles at the output times are the profiles' s(t); the
+    loads follow their ropes (the numpy loop step for step)."""
+    mech = _scene_mech(TWO_DRUMS, _drives(
+        "a: {drum: d1, profile: {type: table, speed: [[0, 0.4]]}}",
+        "b: {drum: d2, profile: {type: table, speed: [[0, -0.5]]}}"), "{damping: exact}")
+    model = _cut(mech.model, 1.5, 1e-7, 0.25)
+    res = simulate(model)
+    assert len(looped) == 1
+    t = res.times
+    np.testing.assert_allclose(res.drive_position[:, 0], 0.4 * t, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(res.drive_position[:, 1], -0.5 * t, rtol=0, atol=1e-12)
+    # the loads rise (d1 winds R omega = 0.2 m/s of r1) and sink (d2 unwinds 0.15 m/s),
+    # to 0.03 m: the axial oscillation started by the speed's jump, v / w with
+    # w = sqrt(EA / (L m)) = 13.5 and 14 rad/s, is 0.015 and 0.011 m
+    z = res.mass_position[:, :, 2]
+    assert z[-1, 0] - z[0, 0] == pytest.approx(0.2 * 1.5, abs=0.03)
+    assert z[-1, 1] - z[0, 1] == pytest.approx(-0.15 * 1.5, abs=0.03)
+    _same_run(simulate(model, fast=False), res)
