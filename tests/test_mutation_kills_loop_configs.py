@@ -296,3 +296,21 @@ def test_two_profile_drums(looped):
     assert z[-1, 0] - z[0, 0] == pytest.approx(0.2 * 1.5, abs=0.03)
     assert z[-1, 1] - z[0, 1] == pytest.approx(-0.15 * 1.5, abs=0.03)
     _same_run(simulate(model, fast=False), res)
+
+
+
+def test_a_rope_below_one_newton(looped):
+    """A 50-g load on a soft rope (EA 1 kN) below the trolley's trapezoid: its rope's
+    force stays within 0.45-0.55 N (under 1 N), swinging; the force samples between
+    steps are cubic Hermite in the force and its rate EA/L L' (where S > 0), as the
+    numpy loop's (step for step)."""
+    mech = _scene_mech(CASES["trolley"]("{}")[0].replace("H: 1000", "H: 0.05").replace(
+        "EA: 1.0e7", "EA: 1.0e3"), _drives("t: {slider: travel, profile: {type: "
+                                            "trapezoid, distance: 2, v_max: 1, a_max: 1}}"),
+        "{damping: none}")
+    model = _cut(mech.model, 3.5, 1e-7, 0.1)
+    res = simulate(model)
+    assert len(looped) == 1
+    F = res.rope_force[:, 0]
+    assert 0.4 < F.min() and F.max() < 0.6, (F.min(), F.max())
+    _same_run(simulate(model, fast=False), res)
