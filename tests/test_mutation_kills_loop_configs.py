@@ -274,29 +274,39 @@ def test_two_guided_loads_kinetic_energy(looped):
     _same_but_peak_times(simulate(model, fast=False), res, [])
 
 
-def test_two_profile_drums(looped):
-    """Two winches, each winding its own rope by a profile (d1 at 0.4 rad/s, d2 at
-    -0.5 rad/s, both from rest at once): each rope's unstretched length L0 = L0_ref - R theta /
-    lambda_ref takes its own drum's angle (the sum over the drums of W theta, zero for
-    the other drum). The drums' angles at the output times are the profiles' s(t); the
-    loads follow their ropes (the numpy loop step for step)."""
-    mech = _scene_mech(TWO_DRUMS, _drives(
+# TWO_DRUMS with a third winch: three ropes wound by three profile drums
+THREE_DRUMS = TWO_DRUMS.replace("  H: [0, 0, 30]\n", "  H: [0, 0, 30]\n  X: [9, 0, 40]\n"
+                                "  Y: [7, 0, 40]\n  Z: [7, 0, 30]\n").replace(
+    "ground: [W, V, S, U]", "ground: [W, V, S, U, X, Y]").replace(
+    "masses: {H: 1000, K: 500}", "masses: {H: 1000, K: 500, Z: 200}").replace(
+    "  d2: {node: V,", "  d3: {node: X, radius: 0.4, inertia: 5, rope_reserve: 100}\n  d2: {node: V,") + \
+    "  r3: {EA: 1.0e6, psi: 0.2, path: [d3, Y, Z]}\n"
+
+
+def test_three_profile_drums(looped):
+    """Three winches, each winding its own rope by a profile (d1 at 0.4 rad/s, d2 at
+    -0.5 rad/s, d3 at 0.25 rad/s, all from rest at once): each rope's unstretched
+    length L0 = L0_ref - R theta / lambda_ref takes its own drum's angle (the sum over
+    the drums of W theta, zero for the others); each drive's reported angle is its own
+    profile's s(t); the loads follow their ropes (the numpy loop step for step)."""
+    assert "r3:" in THREE_DRUMS and "Z: 200" in THREE_DRUMS and "d3:" in THREE_DRUMS
+    mech = _scene_mech(THREE_DRUMS, _drives(
         "a: {drum: d1, profile: {type: table, speed: [[0, 0.4]]}}",
-        "b: {drum: d2, profile: {type: table, speed: [[0, -0.5]]}}"), "{damping: exact}")
+        "b: {drum: d2, profile: {type: table, speed: [[0, -0.5]]}}",
+        "c: {drum: d3, profile: {type: table, speed: [[0, 0.25]]}}"), "{damping: exact}")
     model = _cut(mech.model, 1.5, 1e-7, 0.25)
     res = simulate(model)
     assert len(looped) == 1
     t = res.times
-    np.testing.assert_allclose(res.drive_position[:, 0], 0.4 * t, rtol=0, atol=1e-12)
-    np.testing.assert_allclose(res.drive_position[:, 1], -0.5 * t, rtol=0, atol=1e-12)
-    # the loads rise (d1 winds R omega = 0.2 m/s of r1) and sink (d2 unwinds 0.15 m/s),
-    # to 0.03 m: the axial oscillation started by the speed's jump, v / w with
-    # w = sqrt(EA / (L m)) = 13.5 and 14 rad/s, is 0.015 and 0.011 m
-    z = res.mass_position[:, :, 2]
-    assert z[-1, 0] - z[0, 0] == pytest.approx(0.2 * 1.5, abs=0.03)
-    assert z[-1, 1] - z[0, 1] == pytest.approx(-0.15 * 1.5, abs=0.03)
+    np.testing.assert_allclose(res.drive_position, np.c_[0.4 * t, -0.5 * t, 0.25 * t],
+                               rtol=0, atol=1e-12)
+    # the loads rise (d1 winds R omega = 0.2 m/s of r1, d3 0.1 m/s of r3) and sink (d2
+    # unwinds 0.15 m/s), to 0.03 m: the axial oscillation started by the speed's jump,
+    # v / w with w = sqrt(EA / (L m)) = 13.5, 14 and 22 rad/s, is at most 0.015 m
+    z = res.mass_position[:, :, 2]              # H, Z, K: the nodes' order
+    np.testing.assert_allclose(z[-1] - z[0], [0.2 * 1.5, 0.1 * 1.5, -0.15 * 1.5],
+                               rtol=0, atol=0.03)
     _same_run(simulate(model, fast=False), res)
-
 
 
 def test_a_rope_below_one_newton(looped):
