@@ -43,6 +43,7 @@ from cranefe.analysis.operation import integrate as integ
 from cranefe.analysis.operation.integrate import simulate
 from cranefe.analysis.operation.mechanism import Mechanism
 from cranefe.analysis.operation.scene import parse
+from cranefe.errors import AnalysisError
 
 G = 9.81
 REL = 1e-8
@@ -71,34 +72,38 @@ def _same_run(a, b, rel=REL):
     same_run(a, b, rel, times_atol=1e-14, energy_rel=1e-6)
 
 
-def _drop2(duration):
+def _drop2(duration, swap=False):
     """Two 100-kg loads at rest 0.2 m and 0.2005 m above their ropes' taut points (sway
     off: they fall vertically), max_step 0.5 s: the free fall is exact, the steps double
     from 1e-3 x duration and the step that crosses both taut points is the last one."""
     model = _scene(f"drop2-{duration}", DROP2, f"  duration: {duration}\n"
                    "  tolerance: 1.0e-8\n  max_step: 0.5\n", "{sway: false}")
     L0 = Mechanism(model, parse(model)).L0_ref
-    init = {"q": np.array([10.0 - L0[0] + 0.2, 10.0 - L0[1] + 0.2005]), "v": np.zeros(2)}
+    d = [0.2005, 0.2] if swap else [0.2, 0.2005]
+    init = {"q": np.array([10.0 - L0[0] + d[0], 10.0 - L0[1] + d[1]]), "v": np.zeros(2)}
     return model, init
 
 
-def _taut_at_free_fall_times(res):
-    """The events: r1 then r2 taut where d = g t^2 / 2 (d = 0.2, 0.2005 m), to 1e-9 s
-    (the Illinois search's stop, 1e-13 of the stretch)."""
+def _taut_at_free_fall_times(res, swap=False):
+    """The events: r1 then r2 taut (r2 then r1: swap) where d = g t^2 / 2 (d = 0.2,
+    0.2005 m), to 1e-9 s (the Illinois search's stop, 1e-13 of the stretch)."""
     ev = [(t, w) for t, w in res.events if w.endswith("taut")]
-    assert [w for _, w in ev] == ["rope r1 taut", "rope r2 taut"], res.events
+    want = ["rope r2 taut", "rope r1 taut"] if swap else ["rope r1 taut", "rope r2 taut"]
+    assert [w for _, w in ev] == want, res.events
     np.testing.assert_allclose([t for t, _ in ev],
                                [math.sqrt(2 * 0.2 / G), math.sqrt(2 * 0.2005 / G)],
                                rtol=0, atol=1e-9)
 
 
-def test_two_ropes_pulled_taut_in_one_step(looped):
+@pytest.mark.parametrize("first", ["r1", "r2"])
+def test_two_ropes_pulled_taut_in_one_step(first, looped):
     """Both crossings in the last step (0.103 to 0.22 s): the event search locates each
-    rope's and takes the earlier (r1's, 0.2019 s), then r2's from there (0.2022 s)."""
-    model, init = _drop2(0.22)
+    rope's and takes the earlier (the rope 0.2 m above its taut point, 0.2019 s), then
+    the other's from there (0.2022 s); the earlier rope listed first or second."""
+    model, init = _drop2(0.22, swap=first == "r2")
     res = simulate(model, initial=init)
     assert len(looped) == 1
-    _taut_at_free_fall_times(res)
+    _taut_at_free_fall_times(res, swap=first == "r2")
     _same_run(simulate(model, initial=init, fast=False), res)
 
 
@@ -183,6 +188,51 @@ def _cut(model, duration, tol, out):
     return dataclasses.replace(model, analysis=a)
 
 
+def _plain_loop(monkeypatch):
+    """The loop's functions as plain Python (numba or not), so that their globals can
+    be replaced."""
+    for name in JITTED:
+        f = getattr(loop, name)
+        monkeypatch.setattr(loop, name, getattr(f, "py_func", f))
+
+
+@pytest.mark.parametrize("kind", ["newton", "collapse"])
+def test_a_failure_after_five_steps(kind, looped, monkeypatch):
+    """The free fall of test_kinks_before_one_second_end_the_steps: every step from the
+    6th trial on fails (Newton: status 1) or reports the error 1e3 (rejected, the step
+    times max(0.2, 0.9 x 1e3^(-1/3)) = 0.2) until the step is below the smallest: the
+    run stops at t = 0.031 s (steps of 1, 2, 4, 8, 16 ms) with the numpy loop's message
+    and results (its Stepper.step failing from the 6th call on)."""
+    _plain_loop(monkeypatch)
+    trial = loop._trial
+    calls = {"n": 0}
+
+    def failing_trial(*args):
+        out = trial(*args)
+        calls["n"] += 1
+        if calls["n"] >= 6:
+            return (1,) + tuple(out[1:]) if kind == "newton" else \
+                tuple(out[:4]) + (1e3,) + tuple(out[5:])
+        return out
+    monkeypatch.setattr(loop, "_trial", failing_trial)
+    model = _scene("free", TROLLEY, FREE)
+    out = []
+    for f in (None, False):
+        if f is False:
+            monkeypatch.setattr(integ, "Stepper", _failing(
+                range(6, 10 ** 6), None if kind == "newton" else 1e3))
+        with pytest.raises(AnalysisError) as exc:
+            simulate(model, initial=FREE_INITIAL, fast=f)
+        out.append((str(exc.value), exc.value.result))
+    (mb, b), (ma, a) = out
+    assert len(looped) == 1 and ma == mb, (ma, mb)
+    want = "Newton's method does not converge" if kind == "newton" else \
+        "the step size collapsed"
+    assert f"{want} at t = 0.031 s" in ma, ma
+    assert b.status == 1 and b.steps == 5
+    _same_run(a, b)
+
+
 @pytest.mark.parametrize("j", [1, 2])
 def test_a_failed_trial_of_the_event_search(j, looped, monkeypatch):
     """The two loads of test_two_ropes_pulled_taut_in_one_step in 0.2022 s: the last
@@ -191,9 +241,7 @@ def test_a_failed_trial_of_the_event_search(j, looped, monkeypatch):
     quarter; the events stay at the free-fall times. The numpy loop with its j-th trial
     failing (Stepper.step's call 10 + j: 9 accepted steps, the crossing step) step for
     step; one rejection more than the run without the failure."""
-    for name in JITTED:                        # the plain-Python loop (numba or not)
-        f = getattr(loop, name)
-        monkeypatch.setattr(loop, name, getattr(f, "py_func", f))
+    _plain_loop(monkeypatch)
     model, init = _drop2(0.2022)
     ref = simulate(model, initial=init)
     trial, search = loop._trial, loop._locate
