@@ -233,43 +233,59 @@ def test_a_failure_after_five_steps(kind, looped, monkeypatch):
     _same_run(a, b)
 
 
-@pytest.mark.parametrize("j", [1, 2])
-def test_a_failed_trial_of_the_event_search(j, looped, monkeypatch):
+@pytest.mark.parametrize("j, early", [(1, False), (2, False), (1, True)])
+def test_a_failed_trial_of_the_event_search(j, early, looped, monkeypatch):
     """The two loads of test_two_ropes_pulled_taut_in_one_step in 0.2022 s: the last
     step crosses both taut points; the event search's j-th trial (1: its full step, 2:
     its first Illinois point) fails (Newton): the step is rejected and retried at a
-    quarter; the events stay at the free-fall times. The numpy loop with its j-th trial
-    failing (Stepper.step's call 10 + j: 9 accepted steps, the crossing step) step for
-    step; one rejection more than the run without the failure."""
+    quarter; the events stay at the free-fall times; one rejection more than the run
+    without the failure (two with the 3rd step failing too: `early`). The numpy loop
+    with the same trials failing (its Stepper.step: the same calls in the same order)
+    step for step."""
     _plain_loop(monkeypatch)
     model, init = _drop2(0.2022)
     ref = simulate(model, initial=init)
-    trial, search = loop._trial, loop._locate
-    inside = {"on": False, "calls": 0}
+    state = {"on": False, "in": 0, "n": 0}
+
+    def fails():
+        """Count a trial step; True for the ones to fail."""
+        state["n"] += 1
+        state["in"] += state["on"]
+        return (early and state["n"] == 3) or (state["on"] and state["in"] == j)
+
+    def searching(search):
+        def locate(*args):
+            state["on"] = True
+            try:
+                return search(*args)
+            finally:
+                state["on"] = False
+        return locate
+    trial = loop._trial
 
     def failing_trial(*args):
         out = trial(*args)
-        if inside["on"]:
-            inside["calls"] += 1
-            if inside["calls"] == j:
-                return (1,) + tuple(out[1:])
-        return out
+        return (1,) + tuple(out[1:]) if fails() else out
 
-    def locate(*args):
-        inside["on"] = True
-        try:
-            return search(*args)
-        finally:
-            inside["on"] = False
+    class Failing(integ.Stepper):
+        def step(self, *args, **kw):
+            out = super().step(*args, **kw)
+            return None if fails() else out
+
     monkeypatch.setattr(loop, "_trial", failing_trial)
-    monkeypatch.setattr(loop, "_locate", locate)
+    monkeypatch.setattr(loop, "_locate", searching(loop._locate))
     res = simulate(model, initial=init)
-    assert len(looped) == 2 and inside["calls"] > j
+    assert len(looped) == 2 and state["in"] > j
     _taut_at_free_fall_times(ref)
     _taut_at_free_fall_times(res)
-    assert res.rejected == ref.rejected + 1
-    monkeypatch.setattr(integ, "Stepper", _failing({10 + j}))
-    _same_run(simulate(model, initial=init, fast=False), res)
+    assert res.rejected == ref.rejected + 1 + early
+    state.update(on=False, n=0)
+    state["in"] = 0
+    monkeypatch.setattr(integ, "Stepper", Failing)
+    monkeypatch.setattr(integ, "_locate", searching(integ._locate))
+    a = simulate(model, initial=init, fast=False)
+    assert state["in"] > j
+    _same_run(a, res)
 
 
 @pytest.mark.parametrize("name", ["kinetic", "potential"])
