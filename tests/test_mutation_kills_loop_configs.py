@@ -388,3 +388,19 @@ def test_a_rope_below_one_newton(looped):
     F = res.rope_force[:, 0]
     assert 0.4 < F.min() and F.max() < 0.6, (F.min(), F.max())
     _same_run(simulate(model, fast=False), res)
+
+
+def test_a_winch_paying_out_faster_than_free_fall(looped):
+    """The winch pays out R omega = 0.5 x 4 = 2 m/s of rope at once (1 m/s of the hook's
+    two falls), faster than the load falling from rest: its rope goes slack at once and
+    taut again when the fall has caught up (g t^2 / 2 = 1 m/s x t, t ~ 0.2 s); the wound
+    rope's power after each event with the new slack/taut state; the numpy loop step
+    for step."""
+    mech = _scene_mech(CASES["winch"]("{}")[0], _drives(
+        "h: {drum: hoist, profile: {type: table, speed: [[0, -4]]}}"), "{damping: none}")
+    model = _cut(mech.model, 0.6, 1e-7, 0.05)
+    res = simulate(model)
+    assert len(looped) == 1
+    ev = [(t, w) for t, w in res.events if w.startswith("rope")]
+    assert [w for _, w in ev][:2] == ["rope r slack", "rope r taut"], ev
+    _same_run(simulate(model, fast=False), res)
