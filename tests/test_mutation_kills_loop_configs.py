@@ -196,13 +196,15 @@ def _plain_loop(monkeypatch):
         monkeypatch.setattr(loop, name, getattr(f, "py_func", f))
 
 
-@pytest.mark.parametrize("kind", ["newton", "collapse"])
-def test_a_failure_after_five_steps(kind, looped, monkeypatch):
+@pytest.mark.parametrize("kind, progress", [("newton", False), ("collapse", False),
+                                            ("newton", True)])
+def test_a_failure_after_five_steps(kind, progress, looped, monkeypatch):
     """The free fall of test_kinks_before_one_second_end_the_steps: every step from the
     6th trial on fails (Newton: status 1) or reports the error 1e3 (rejected, the step
     times max(0.2, 0.9 x 1e3^(-1/3)) = 0.2) until the step is below the smallest: the
     run stops at t = 0.031 s (steps of 1, 2, 4, 8, 16 ms) with the numpy loop's message
-    and results (its Stepper.step failing from the 6th call on)."""
+    and results (its Stepper.step failing from the 6th call on); with a progress
+    callback too (the loop then runs in 200 chunks and stops at the failing one)."""
     _plain_loop(monkeypatch)
     trial = loop._trial
     calls = {"n": 0}
@@ -222,7 +224,8 @@ def test_a_failure_after_five_steps(kind, looped, monkeypatch):
             monkeypatch.setattr(integ, "Stepper", _failing(
                 range(6, 10 ** 6), None if kind == "newton" else 1e3))
         with pytest.raises(AnalysisError) as exc:
-            simulate(model, initial=FREE_INITIAL, fast=f)
+            simulate(model, initial=FREE_INITIAL, fast=f,
+                     progress=(lambda t, T: None) if progress else None)
         out.append((str(exc.value), exc.value.result))
     (mb, b), (ma, a) = out
     assert len(looped) == 1 and ma == mb, (ma, mb)
