@@ -8,7 +8,9 @@ test, each on a small configuration with values by hand:
   unequally up and down, so that the two ends' worst sides differ;
 - the suspension node of phi5 of a hinge: the node with the most falls to the hanging
   masses, never a ground node (a tag line's anchor), the falls of several ropes to one
-  node added; two nodes with the most falls are refused (ModelError).
+  node added; two nodes with the most falls are refused (ModelError);
+- and the refusal of unknown `only=` names, two of them on a scene with two drives (the
+  separators of both lists).
 """
 
 from types import SimpleNamespace
@@ -187,3 +189,20 @@ def test_phi5_of_a_slew_with_a_tag_line_uses_the_tip(tmp_path):
     assert p["acceleration"] == pytest.approx(RADIUS * omega / ramp, rel=1e-12)
     assert p["rigid_body_force_N"] == pytest.approx(2000 * RADIUS * omega / ramp,
                                                     rel=1e-12)
+
+
+def test_two_unknown_only_names_on_a_scene_with_two_drives(tmp_path):
+    """The cart (hoist drum and a travel move) asked for phi9 and a slewing it does not
+    have: both names and both drives listed, each list comma-separated; refused before
+    any run."""
+    from test_mutation_kills_loads_analysis import CART
+    (tmp_path / "cart.yaml").write_text(CART)
+    path = tmp_path / "s.yaml"
+    path.write_text("cranefe: 1\nscene: t\nmodel: cart.yaml\nanalysis:\n  type: loads\n"
+                    "  hoist: {speed: 0.2}\n  drives:\n"
+                    "    travel: {v_max: 0.5, ramp: 2.0, jerk_time: 0, distance: 6.0}\n")
+    with pytest.raises(ModelError) as err:
+        cranefe.loads(str(path), only=["slewing", "phi2", "phi9"])
+    assert err.value.message == ("unknown factor or drive 'phi9', 'slewing' in only=; use "
+                                 "phi1-phi7 or a drive: hoist, travel")
+    assert err.value.entry == "only" and err.value.file == str(path)
