@@ -336,17 +336,34 @@ def _phi5_hoist(res, spec, name, g, a):
 
 
 def suspension_node(model, hanging):
-    """The node the hanging masses hang from: the other end of the span (most falls)
-    that joins a hanging mass to a node that is not one."""
+    """The node the hanging masses hang from: the node, neither hanging nor on the
+    ground, that the most falls of spans join to a hanging mass (a tag line's anchor on
+    the ground cannot carry the load through a drive's motion); None if there is none.
+    Two different nodes with the most falls are refused: the suspension point (the
+    lever of phi5 of a hinge) would be ambiguous."""
     idx = model.node_index
     hang = {idx[n] for n in hanging}
-    best = None
+    ground = {int(i) for i in model.ground}
+    falls, ropes = {}, {}
     for rope in model.ropes:
         for a, b, f in zip(rope.span_a, rope.span_b, rope.falls):
             for x, y in ((a, b), (b, a)):
-                if x in hang and y not in hang and (best is None or f > best[0]):
-                    best = (f, int(y))
-    return None if best is None else best[1]
+                if x in hang and y not in hang and y not in ground:
+                    falls[int(y)] = falls.get(int(y), 0) + int(f)
+                    ropes.setdefault(int(y), []).append(rope.name)
+    if not falls:
+        return None
+    most = max(falls.values())
+    top = [y for y, f in falls.items() if f == most]
+    if len(top) > 1:
+        names = [model.node_names[y] for y in top]
+        raise ModelError(
+            f"the hanging masses hang from {' and '.join(names)} by {most} falls each "
+            f"(ropes {', '.join(sorted({r for y in top for r in ropes[y]}))}), so phi5 of a "
+            "hinge has no single suspension point; reeve the load to one node (e.g. a "
+            "path ending [.., TIP, {node: LOAD, falls: 2}]) or give one node more falls",
+            model.file, "ropes")
+    return top[0]
 
 
 def _phi5_joint(model, res, spec, move, name, a_max):
