@@ -343,10 +343,12 @@ PRESETS = {
     # an elastic arm, phi5 of a slider move (+ ZV shaper); the configurations file:
     # only=[phi5] with a move, every run's warnings, a tag line beside a 0.49 N rope,
     # light and massless parts in phi1, phi5 of an inclined luffing jib and of a 60 deg
-    # slew about axes away from the origin (pendulum references by DOP853)
+    # slew about axes away from the origin (pendulum references by DOP853); the ties
+    # file: phi1's worst mass on a balanced arm, the suspension node's rule by hand
     "loads_analysis": ("cranefe/analysis/loads/analysis.py",
                        ["tests/test_mutation_kills_loads_analysis.py",
                         "tests/test_mutation_kills_loads_configs.py",
+                        "tests/test_mutation_kills_loads_ties.py",
                         "tests/test_loads.py::test_phi5_of_a_luffing_hinge"]),
     # operation/lean.py: Lean (the integrator's view of a mechanism) by hand and against
     # Mechanism on 14 small scenes x sway/damping (every branch), Generic (~5 s CPU)
