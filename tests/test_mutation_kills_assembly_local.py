@@ -60,10 +60,12 @@ XYZ = {"O": [0, 0, 0], "P": [2, 1, 2], "Q": [2, 4, 6], "R": [5, 4, 6], "S": [5, 
        "T": [0, 0, 4]}
 
 
-@pytest.fixture(scope="module")
-def local(tmp_path_factory):
-    """{member name: (k, m, axes, l)} of the model's beam elements, one each."""
-    p = tmp_path_factory.mktemp("local") / "m.yaml"
+@pytest.fixture
+def local(tmp_path):
+    """{member name: (k, m, axes, l)} of the model's beam elements, one each. Built in
+    every test (a few ms), not once per module: mutmut runs for a mutant only the tests
+    during which the mutated function was called."""
+    p = tmp_path / "m.yaml"
     p.write_text(MODEL)
     model = load(p)
     dofs = build_dofs(model)
