@@ -17,6 +17,10 @@ assembly): two configurations the other assembly tests do not build.
   1/3]] + diag(0, M_load): det(K - w^2 M) = 0 by the quadratic formula; statics: the fall
   carries (M_load + mu L / 2) g, the extra piece that plus the fall's upper half, (M_load
   + mu L) g (its own weight zero).
+- A light body (0.5 kg, a laboratory model's hook) welded to a hinged arm: its own
+  weight enters the gravity points, i.e. the load stiffness of the rigid group (whose
+  reference is the arm's centre), whatever its size (`_BodyMass`): the compound
+  pendulum's w^2 = g sum(m_k d_k) / sum(I_k + m_k d_k^2).
 
 Tolerance 1e-12 relative: eigenvalues of one or two coordinates and a linear solve.
 """
@@ -81,3 +85,23 @@ def test_the_extra_length_piece_of_a_rope_with_mass_is_massless():
     st = solve_static(model)
     assert sorted(st.element_force) == pytest.approx(
         [(M + mu * L / 2) * G, (M + mu * L) * G], rel=1e-12)
+
+
+LIGHT = """cranefe: 1
+plane: xz
+nodes: {O: [0, 0, 0], W: [0, 0, -1.5]}
+ground: [O]
+bodies:
+  arm: {mass: 3, com: [0, 0, -1], inertia: 0.2, nodes: [W]}
+  hook: {mass: 0.5, com: [0, 0, -2], inertia: 0.01}
+joints:
+  - {type: hinge, bodies: [ground, arm], at: O}
+  - {type: fixed, bodies: [arm, hook], at: W}
+"""
+
+
+def test_a_light_body_swings_by_its_own_weight():
+    r = modes(load("light.yaml", LIGHT))
+    assert r.omega.shape == (1,)
+    w2 = G * (3 * 1.0 + 0.5 * 2.0) / (0.2 + 3 * 1.0**2 + 0.01 + 0.5 * 2.0**2)
+    assert r.omega[0] ** 2 == pytest.approx(w2, rel=1e-12)
