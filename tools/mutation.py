@@ -131,7 +131,9 @@ PRESETS = {
                   "tests/test_mutation_kills_properties.py::"
                   "test_motion_end_is_the_last_boundary_only_when_it_rests"]),
     # assembly/: every file of the package (a glob), with the fast model-building tests;
-    # _springs: every field of the spring rows, the pattern, null space, COO step, Reuse
+    # _springs: every field of the spring rows, the pattern, null space, COO step, Reuse;
+    # _local: beam_local_matrices by hand; _more: rigid rod oblique to a 3D hinge, a
+    # rope's extra length, a light welded body (whole run ~20 min at load 4-5)
     "assembly": ("cranefe/assembly/*",
                  ["tests/test_closed_forms.py", "tests/test_kernels.py",
                   "tests/test_members.py", "tests/test_mutation_kills_system.py",
@@ -139,7 +141,9 @@ PRESETS = {
                   "tests/test_mutation_kills_assembly.py",
                   "tests/test_mutation_kills_assembly_beams.py",
                   "tests/test_timoshenko_geometric.py",
-                  "tests/test_mutation_kills_assembly_springs.py"]),
+                  "tests/test_mutation_kills_assembly_springs.py",
+                  "tests/test_mutation_kills_assembly_local.py",
+                  "tests/test_mutation_kills_assembly_more.py"]),
     # shaping/motion.py: the acceleration/jerk-step profiles, their shaping and the
     # residual sway in closed form; test_shaping.py (1.5 s) and the kill tests (~6 s)
     "shaping_motion": ("cranefe/analysis/shaping/motion.py",
