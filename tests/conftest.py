@@ -13,3 +13,20 @@ def model_from(tmp_path):
         path.write_text(textwrap.dedent(text))
         return load(path)
     return make
+
+
+@pytest.fixture
+def looped(monkeypatch):
+    """simulate() through the compiled loop's code (loop.run; as plain Python without
+    numba: `fast.available` answers True); returns the list of its calls."""
+    from cranefe.analysis.operation import fast, loop
+    from cranefe.analysis.operation import integrate as integ
+    calls = []
+    run = loop.run
+    monkeypatch.setattr(fast, "available", lambda: True)
+
+    def spy(*a, **k):
+        calls.append(a[2])
+        return run(*a, **k)
+    monkeypatch.setattr(integ._loop, "run", spy)
+    return calls

@@ -50,20 +50,6 @@ G = 9.81
 REL = 1e-8
 
 
-@pytest.fixture
-def looped(monkeypatch):
-    """simulate() through loop.run (numba or not); returns the list of its calls."""
-    calls = []
-    run = loop.run
-    monkeypatch.setattr(fast, "available", lambda: True)
-
-    def spy(*a, **k):
-        calls.append(a[2])
-        return run(*a, **k)
-    monkeypatch.setattr(integ._loop, "run", spy)
-    return calls
-
-
 def _same_run(a, b, rel=REL):
     """test_operation_speed's comparison of two runs, here with the output times to
     1e-14 s and the energy balance's error to 1e-6 of itself."""

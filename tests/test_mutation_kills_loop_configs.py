@@ -36,9 +36,9 @@ import pytest
 from test_mutation_kills_integrate import DROP2, TROLLEY, _scene
 from test_mutation_kills_integrate_loop import FREE, FREE_INITIAL, _failing
 from test_mutation_kills_lean import CASES, TAG, TWO_DRUMS, _drives, _scene_mech
-from test_operation_speed import same_run
+from test_mutation_kills_lean_loop import _same_run
 
-from cranefe.analysis.operation import fast, loop
+from cranefe.analysis.operation import loop
 from cranefe.analysis.operation import integrate as integ
 from cranefe.analysis.operation.integrate import simulate
 from cranefe.analysis.operation.mechanism import Mechanism
@@ -50,26 +50,6 @@ REL = 1e-8
 # the loop's functions that numba compiles (their Python originals as `py_func`)
 JITTED = ("_motion", "_kin", "_trial", "_powers", "_energy", "_hermite_max1",
           "_force_rate", "_accept", "_stretch_k", "_sign", "_locate", "_run")
-
-
-@pytest.fixture
-def looped(monkeypatch):
-    """simulate() through loop.run (numba or not); returns the list of its calls."""
-    calls = []
-    run = loop.run
-    monkeypatch.setattr(fast, "available", lambda: True)
-
-    def spy(*a, **k):
-        calls.append(a[2])
-        return run(*a, **k)
-    monkeypatch.setattr(integ._loop, "run", spy)
-    return calls
-
-
-def _same_run(a, b, rel=REL):
-    """test_operation_speed's comparison: output times to 1e-14 s, the energy error to
-    1e-6 of itself (or `rel`)."""
-    same_run(a, b, rel, times_atol=1e-14, energy_rel=1e-6)
 
 
 def _drop2(duration, swap=False):
