@@ -300,8 +300,11 @@ def _massless_exact():
     complex stiffness, node condensed: mu m = k0 + c_a - c_a^2 / (c_a + k_b),
     c_a = k_a (1 + i psi / (2 pi))."""
     b = PSI_A * KA / (2 * mp.pi * mp.mpf(W_ML))
-    roots = mp.polyroots([M1 * b, M1 * (KA + KB), b * (K0 + KB),
-                          (K0 + KA) * (KA + KB) - KA**2], maxsteps=200, extraprec=100)
+    coeffs = [M1 * b, M1 * (KA + KB), b * (K0 + KB), (K0 + KA) * (KA + KB) - KA**2]
+    try:    # mpmath >= 1.4 deprecates the descending order
+        roots = mp.polyroots(coeffs[::-1], maxsteps=200, extraprec=100, asc=True)
+    except TypeError:   # mpmath 1.3: descending only, no `asc`
+        roots = mp.polyroots(coeffs, maxsteps=200, extraprec=100)
     lam = [r for r in roots if mp.im(r) > 0][0]
     relax = [r for r in roots if abs(mp.im(r)) < 1e-20][0]
     ca = KA * (1 + 1j * PSI_A / (2 * mp.pi))
