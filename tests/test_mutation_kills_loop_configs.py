@@ -35,7 +35,7 @@ import numpy as np
 import pytest
 from test_mutation_kills_integrate import DROP2, TROLLEY, _scene
 from test_mutation_kills_integrate_loop import FREE, FREE_INITIAL, _failing
-from test_mutation_kills_lean import CASES, TAG, TWO_DRUMS, _drives, _scene_mech
+from test_mutation_kills_lean import CASES, TAG, TRAVEL, TWO_DRUMS, _drives, _scene_mech
 from test_mutation_kills_lean_loop import _same_run
 
 from cranefe.analysis.operation import loop
@@ -120,9 +120,7 @@ def test_tag_line_stretched_without_sway(looped):
     error, h^4 |S''''| / 384 with h <= 70 ms; a rate without the guided load's velocity
     is off by ~EA/L x 1 m/s x h / 8 = 15 N); the numpy loop step for step."""
     assert TAG_AWAY != TAG
-    mech = _scene_mech(TAG_AWAY, _drives("t: {slider: travel, profile: {type: trapezoid, "
-                                         "distance: 2, v_max: 1, a_max: 1}}"),
-                       "{sway: false, damping: none}")
+    mech = _scene_mech(TAG_AWAY, _drives(TRAVEL), "{sway: false, damping: none}")
     model = _cut(mech.model, 3.5, 1e-7, 0.1)
     res = simulate(model)
     assert len(looped) == 1
@@ -309,9 +307,7 @@ def test_two_guided_loads_kinetic_energy(looped):
     work the same 750 J (W = the guided loads' kinetic energy, nothing else moves); the
     numpy loop step for step."""
     assert "sling" in TROLLEY_SLING and "B: 500" in TROLLEY_SLING
-    mech = _scene_mech(TROLLEY_SLING, _drives("t: {slider: travel, profile: {type: "
-                                              "trapezoid, distance: 2, v_max: 1, a_max: 1}}"),
-                       "{sway: false, damping: none}")
+    mech = _scene_mech(TROLLEY_SLING, _drives(TRAVEL), "{sway: false, damping: none}")
     model = _cut(mech.model, 1.5, 1e-7, 0.5)
     res = simulate(model)
     assert len(looped) == 1
@@ -362,8 +358,7 @@ def test_a_rope_below_one_newton(looped):
     steps are cubic Hermite in the force and its rate EA/L L' (where S > 0), as the
     numpy loop's (step for step)."""
     mech = _scene_mech(CASES["trolley"]("{}")[0].replace("H: 1000", "H: 0.05").replace(
-        "EA: 1.0e7", "EA: 1.0e3"), _drives("t: {slider: travel, profile: {type: "
-                                            "trapezoid, distance: 2, v_max: 1, a_max: 1}}"),
+        "EA: 1.0e7", "EA: 1.0e3"), _drives(TRAVEL),
         "{damping: none}")
     model = _cut(mech.model, 3.5, 1e-7, 0.1)
     res = simulate(model)
