@@ -937,9 +937,12 @@ def test_two_springs_and_a_rope_share_the_load():
     np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * m * G)
     assert mech.energy(ev, mech.taut0)[2] == pytest.approx(Ue, rel=1e-7)
     # tangent: each element's k e e^T + N/d (I - e e^T) (rope: EA/L, S/L);
-    # dashpots: each b e e^T, b = psi k / (2 pi sqrt(k/m)) (|e| = 1 on one load)
+    # dashpots: each b e e^T, b = psi k / (2 pi w), w^2 the axial stiffness along e over
+    # the load's mass, sum_s k_s (e_s . e)^2 / m (the load pulled along e: the springs
+    # and the rope all resist it)
     Kh = np.zeros((3, 3))
     Ch = np.zeros((3, 3))
+    els = []
     for a, kk, N0, d0, psi in (([-5, 0, 10], k, k * cs * u, np.sqrt(50), 0.4),
                                ([5, 0, 10], k, k * cs * u, np.sqrt(50), 0.4),
                                ([0, 0, 10], None, None, None, 0.2)):
@@ -951,7 +954,10 @@ def test_two_springs_and_a_rope_share_the_load():
         else:
             N = N0 + kk * (dl - d0)
         Kh += kk * np.outer(e, e) + N / dl * (np.eye(3) - np.outer(e, e))
-        Ch += psi * kk / (2 * np.pi * np.sqrt(kk / m)) * np.outer(e, e)
+        els.append((kk, e, psi))
+    for kk, e, psi in els:
+        w = np.sqrt(sum(ks * (es @ e) ** 2 for ks, es, _ in els) / m)
+        Ch += psi * kk / (2 * np.pi * w) * np.outer(e, e)
     np.testing.assert_allclose(ev.K, Kh, rtol=1e-9, atol=1e-9 * np.abs(Kh).max())
     np.testing.assert_allclose(ev.C, Ch, rtol=1e-9, atol=1e-9 * np.abs(Ch).max())
 
@@ -1207,3 +1213,29 @@ def test_loops_and_free_bodies_are_refused():
     with pytest.raises(ModelError) as exc:
         _scene_mech(text, "  duration: 2\n  drives:\n    d: {hinge: luff, torque: 100}\n")
     assert exc.value.entry == "analysis.drives.d" and "no mass" in exc.value.message
+
+
+def test_two_damped_ropes_on_a_guided_load_damp_it_at_psi_over_4pi():
+    """A guided load (sway off: its height z the one coordinate) on a vertical rope and a
+    slanted one of another stiffness: the hoisting frequency is w^2 = (c_a g_a^2 + c_b g_b^2) / m
+    (g = dL/dz = the rope's vertical direction, c = EA / L). Each dashpot b = psi c /
+    (2 pi w) takes that w (the Rayleigh quotient along the rope's pull, one coordinate:
+    the same for both), so C = psi / (2 pi w) m w^2 and the load's damping ratio
+    C / (2 m w) is psi / (4 pi) exactly, as for one rope. Each rope's own frequency
+    (c g^2 / m) would give sqrt(2)-ish more."""
+    m, psi = 800.0, 0.3
+    text = ("cranefe: 1\nname: two ropes\nplane: xz\nnodes:\n  A: [0, 0, 10]\n"
+            "  B: [3, 0, 8]\n  H: [0, 0, 0]\nground: [A, B]\nmasses: {H: 800}\nropes:\n"
+            "  a: {EA: 2.0e6, psi: 0.3, path: [A, H]}\n"
+            "  b: {EA: 5.0e6, psi: 0.3, path: [B, H]}\n")
+    mech = _scene_mech(text, "  duration: 1\n", "{sway: false, damping: exact}")
+    assert mech.nx == 1
+    z = -0.01
+    ev = mech.evaluate(0.0, np.array([z]), np.zeros(1), mech.taut0)
+    ka = 0.0
+    for (x, h), EA in (((0.0, 10.0), 2.0e6), ((3.0, 8.0), 5.0e6)):
+        L = np.hypot(x, h - z)
+        ka += EA / L * ((z - h) / L) ** 2          # c g^2
+    w = np.sqrt(ka / m)
+    assert ev.C[0, 0] == pytest.approx(psi / (2 * np.pi * w) * ka, rel=1e-12)
+    assert ev.C[0, 0] / (2 * m * w) == pytest.approx(psi / (4 * np.pi), rel=1e-12)

@@ -111,12 +111,26 @@ def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, psi, invM, Fg,
     Sd = np.zeros(nr)
     b = np.zeros(nr)
     if damped:
+        # elements.dashpot_coefficients: w_r^2 = sum_s c_s A_sr^2 / A_rr, A = G M^-1 G^T
+        A = np.zeros((nr, nr))
         for r in range(nr):
-            gm = 0.0
-            for c in range(nx):
-                gm += G[r, c] * G[r, c] * invM[c]
-            w2 = cL[r] * gm
-            if w2 > 0.0:
+            for s in range(r + 1):
+                acc = 0.0
+                for c in range(nx):
+                    acc += G[r, c] * G[s, c] * invM[c]
+                A[r, s] = acc
+                A[s, r] = acc
+        tr = 0.0                                # trace(M^-1 K): a zero row's w^2
+        for s in range(nr):
+            tr += cL[s] * A[s, s]
+        for r in range(nr):
+            w2 = tr
+            if A[r, r] > 0.0:
+                w2 = 0.0
+                for s in range(nr):
+                    w2 += cL[s] * A[s, r] * A[s, r]
+                w2 /= A[r, r]
+            if cL[r] > 0.0 and w2 > 0.0:
                 b[r] = psi[r] * cL[r] / (TWO_PI * math.sqrt(w2))
             Sd[r] = b[r] * edot[r]
     F = Fg.copy()

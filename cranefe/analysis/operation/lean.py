@@ -25,9 +25,8 @@ import math
 
 import numpy as np
 
+from ... import elements as kernels
 from .mechanism import Eval
-
-TWO_PI = 2.0 * np.pi
 
 
 def ops(mech):
@@ -114,7 +113,6 @@ class Lean:
         self.DtD = m.DtD
         self.nf = len(m.free)
         self.damped = m.damped
-        self.psi2pi = m.psi / TWO_PI
         self.kin = _TimeCache(self._kin)
         # L0 = L0_ref - W theta (docs/operations.md "Unstretched length and drums")
         self.W = np.zeros((nr, m.nd))
@@ -246,14 +244,8 @@ class Lean:
             S = np.where(taut, EA * loglam, 0.0)
             cL = np.where(taut, EA / L, 0.0)
         if self.damped:
-            # b = psi c / (2 pi w), w^2 = c r^T M^-1 r (Mechanism.evaluate), i.e.
-            # b = psi / (2 pi) sqrt(c / r^T M^-1 r) when every rope is taut
-            gm = (G * G) @ m.invM_x
-            if self._alltaut and min(gm.tolist()) > 0:
-                b = self.psi2pi * np.sqrt(cL / gm)
-            else:
-                w = np.sqrt(np.maximum(cL * gm, 0.0))
-                b = np.where(w > 0, m.psi * cL / (TWO_PI * np.where(w > 0, w, 1.0)), 0.0)
+            # b = psi c / (2 pi w), w from the ropes' Rayleigh quotient (Mechanism.evaluate)
+            b = kernels.dashpot_coefficients(G, m.invM_x, cL, m.psi)
             Sd = b * edot
             St = S + Sd
         else:

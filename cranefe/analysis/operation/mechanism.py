@@ -898,20 +898,35 @@ class Mechanism:
         else:
             K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) \
                 - (eD.T * w) @ eD
-        # damping: b = psi c / (2 pi w), c = EA/L, w the rope's axial frequency now
+        # springs' state (their dashpots share the ropes' frequencies)
+        nsp = len(self.sp_k)
+        N = np.zeros(nsp)
+        if nsp:
+            _, N, rs, Ks = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
+                                                 self.sp_dref, self.N_ref)
+            Gs = rs.reshape(nsp, -1)[:, self.free3] @ self.E
+        # damping: b = psi k / (2 pi w), k = EA/L for a rope, w the frequency of the
+        # motion its pull drives now (kernels.dashpot_coefficients): ropes, the drums'
+        # angles and springs in one Rayleigh quotient
         Sd = np.zeros(nr)
         b = np.zeros(nr)
-        if damping and self.damped and nr:
+        bs = np.zeros(nsp)
+        if damping and self.damped and (nr or nsp):
             invM = self.invM_x
             if self.nJ:
                 # a joint coordinate's mass with the others held: the current M_J's diagonal
                 invM = invM.copy()
                 invM[self.jb] = 1.0 / np.diag(jm.M)
-            w2 = cL * ((G * G) @ invM)
-            for cc, k in enumerate(self.qdrums):
-                w2 = w2 + cL * Rd[:, k] ** 2 / self.J[cc]
-            w = np.sqrt(np.maximum(w2, 0.0))
-            b = np.where(w > 0, self.psi * cL / (2 * np.pi * np.where(w > 0, w, 1.0)), 0.0)
+            nq = len(self.qdrums)
+            rows = np.zeros((nr + nsp, nx + nq))
+            rows[:nr, :nx] = G
+            rows[:nr, nx:] = Rd[:, self.qdrums]
+            if nsp:
+                rows[nr:, :nc] = Gs
+            bb = kernels.dashpot_coefficients(
+                rows, np.concatenate([invM, 1.0 / self.J if nq else []]),
+                np.concatenate([cL, self.sp_k]), np.concatenate([self.psi, self.sp_psi]))
+            b, bs = bb[:nr], bb[nr:]
             Sd = b * edot
             F[:nx] -= G.T @ Sd
             C[:nx, :nx] += (G.T * b) @ G
@@ -940,29 +955,19 @@ class Mechanism:
             F[i] += tq
             C[i, i] -= dtq
         # springs
-        N = np.zeros(len(self.sp_k))
-        if len(self.sp_k):
-            _, N, rs, Ks = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
-                                                 self.sp_dref, self.N_ref)
-            free3 = self.free3
-            rsf = rs.reshape(len(N), -1)
-            Gs = rsf[:, free3] @ self.E
+        spring = None
+        if nsp:
             F[:nc] -= Gs.T @ N
-            K[:nc, :nc] += self.E.T @ Ks[np.ix_(free3, free3)] @ self.E
+            K[:nc, :nc] += self.E.T @ Ks[np.ix_(self.free3, self.free3)] @ self.E
+            Ndot = 0.0
             if damping and self.damped:
                 ddot = np.einsum("rij,ij->r", rs, V)
-                w2 = self.sp_k * np.einsum("rj,rj->r", Gs, Gs / self.M[:nc])
-                bs = np.where(w2 > 0, self.sp_psi * self.sp_k /
-                              (2 * np.pi * np.sqrt(np.maximum(w2, 1e-300))), 0.0)
                 Nd = bs * ddot
                 F[:nc] -= Gs.T @ Nd
                 C[:nc, :nc] += (Gs.T * bs) @ Gs
                 N = N + Nd
-                spring = (rs, float(Nd @ ddot))
-            else:
-                spring = (rs, 0.0)
-        else:
-            spring = None
+                Ndot = float(Nd @ ddot)
+            spring = (rs, Ndot)
         if self.flex is not None:                # elastic, gravity, frame inertia
             self.flex.forces(self, t, q, v, F, K, C)
         ev = Eval(t, F, K, C, X, V, L, L0, S, Sd, edot, N, theta, omega, drive_torque,
