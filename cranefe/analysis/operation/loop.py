@@ -42,8 +42,9 @@ steps) raises the AnalysisError of the Python loop, with the results up to it ke
 Compiled with `cache=True`: the first call compiles for ~50 s of CPU, later processes load
 the cache. numba's cache of this module's functions does not notice an edit of fast.py
 or results.py, whose `_step`, `_forces` and `_hermite_max1` they compile in: after
-editing those, touch this file (or delete its __pycache__) so that all are compiled
-afresh.
+editing those (or switching versions, e.g. `git stash`), delete the `*.nbi` and `*.nbc`
+files in this folder's __pycache__ so that all are compiled afresh (touching this file was
+seen not to be enough after a `git stash`).
 """
 
 import math
@@ -294,15 +295,15 @@ _hermite_max1 = _jit(_results._hermite_max1)
 
 
 @_jit
-def _force_rate(out, EA):
-    """Recorder._force_rate: (S + S_d, EA/L e' where S > 0)."""
+def _force_rate(out, EA, taut):
+    """Recorder._force_rate: (S + S_d, EA/L e' where taut)."""
     S, Sd, L, edot = out[7], out[8], out[4], out[9]
     nr = S.shape[0]
     F = np.empty(nr)
     r = np.empty(nr)
     for k in range(nr):
         F[k] = S[k] + Sd[k]
-        r[k] = (EA[k] / L[k] if S[k] > 0 else 0.0) * edot[k]
+        r[k] = (EA[k] / L[k] if taut[k] else 0.0) * edot[k]
     return F, r
 
 
@@ -319,7 +320,7 @@ def _accept(t0, q0, v0, t1, q1, v1, out1, kt1, qi, vi, taut, fs, ist, F0, r0, pe
     fs[F_W] += 0.5 * h * (fs[F_PDR] + Pdr) + Tg1 - fs[F_TG]
     fs[F_D] += 0.5 * h * (fs[F_PDI] + Pdi)
     fs[F_WD] += 0.5 * h * (fs[F_PW] + Pw)
-    F1, r1 = _force_rate(out1, EA)
+    F1, r1 = _force_rate(out1, EA, taut)
     for k in range(F1.shape[0]):
         a, b, m0, m1 = F0[k], F1[k], h * r0[k], h * r1[k]
         if a > peak[k] or b > peak[k] or (m0 > 0 and m1 < 0):
@@ -507,7 +508,7 @@ def _run(t_stop, T, bps, max_step, hmin, max_steps, newton_tol, newton_max, tol,
                                psi, invM, Fgv, D, falls, span_rope, damped, False, K0, K0)
             for i in range(n):
                 a[i] = ev[0][i] / M[i]
-            Fn, rn = _force_rate(ev, EA)
+            Fn, rn = _force_rate(ev, EA, taut)
             F0[:] = Fn
             r0[:] = rn
             fs[F_PDR], fs[F_PDI], fs[F_PW] = _powers(ev, kt, taut, fd)
@@ -659,7 +660,7 @@ def run(st, rec, spec, prep, t, q, v, ev, taut, progress, hmin, newton_max, max_
     a = np.asarray(ev.F, float) / st.M
     taut = np.array(taut, np.bool_)
     jerk = np.zeros(n)
-    F0, r0, _ = rec._force_rate(ev)
+    F0, r0, _ = rec._force_rate(ev, taut)
     F0, r0 = np.array(F0, float), np.array(r0, float)
     loglam0 = np.array(ev._loglam, float)
     fs = np.zeros(NF)

@@ -184,13 +184,15 @@ class Recorder:
         self.sway_nodes = mech.free
         self.max_terms = [0.0, 0.0, 0.0]
 
-    def _force_rate(self, ev):
-        """(S + S_d, its rate EA/L e') of a state, made once (each serves two steps)."""
+    def _force_rate(self, ev, taut):
+        """(S + S_d, its rate EA/L e' for the ropes taut over the step) of a state, made
+        once (each serves two steps; a state at an event is evaluated again with the new
+        `taut` set, a new object): a rope that goes taut starts at S = 0 with its full
+        rate."""
         fr = getattr(ev, "_fr", None)
         if fr is None:
             F = ev.S + ev.Sd
-            fr = ev._fr = (F, np.where(ev.S > 0, self.m.EA / ev.L, 0.0) * ev.edot,
-                           F.tolist())
+            fr = ev._fr = (F, np.where(taut, self.m.EA / ev.L, 0.0) * ev.edot, F.tolist())
         return fr
 
     def start(self, t, q, v, a, ev, taut):
@@ -217,7 +219,7 @@ class Recorder:
         self.W += 0.5 * h * (ev0.P_drive + ev1.P_drive) + ev1.T_guided - ev0.T_guided
         self.D += 0.5 * h * (ev0.P_diss + ev1.P_diss)
         self.Wd += 0.5 * h * (ev0.P_wound + ev1.P_wound)
-        (_, r0, F0), (_, r1, F1) = self._force_rate(ev0), self._force_rate(ev1)
+        (_, r0, F0), (_, r1, F1) = self._force_rate(ev0, taut), self._force_rate(ev1, taut)
         peak, peak_t = self.peak, self.peak_t
         for k, (a, b, m0, m1) in enumerate(zip(F0, F1, (h * r0).tolist(),
                                                (h * r1).tolist())):
@@ -240,18 +242,19 @@ class Recorder:
             qs = h00 * q0 + h10 * h * v0 + h01 * q1 + h11 * h * v1
             d00, d10, d01, d11 = 6*s**2 - 6*s, 3*s**2 - 4*s + 1, -6*s**2 + 6*s, 3*s**2 - 2*s
             vs = (d00 * q0 + d01 * q1) / h + d10 * v0 + d11 * v1
-            evs = ev1 if s >= 1 - 1e-12 else self._between(ts, s, h, qs, vs, ev0, ev1)
+            evs = ev1 if s >= 1 - 1e-12 else self._between(ts, s, h, qs, vs, ev0, ev1,
+                                                                taut)
             self._sample(evs, qs, vs)
             self.next_out += 1
         self.last = ev1
 
-    def _between(self, ts, s, h, qs, vs, ev0, ev1):
+    def _between(self, ts, s, h, qs, vs, ev0, ev1, taut):
         """The state at an output time inside a step, without a force evaluation: node
         positions from the interpolated coordinates, rope forces from the cubic Hermite
         interpolant of their values and rates at the step's ends."""
         m = self.m
         X, _, theta, omega = self.ops.place(ts, qs, vs)
-        (F0, d0, _), (F1, d1, _) = self._force_rate(ev0), self._force_rate(ev1)
+        (F0, d0, _), (F1, d1, _) = self._force_rate(ev0, taut), self._force_rate(ev1, taut)
         F = (2*s**3 - 3*s**2 + 1) * F0 + (s**3 - 2*s**2 + s) * h * d0 \
             + (-2*s**3 + 3*s**2) * F1 + (s**3 - s**2) * h * d1
         tq = np.zeros(m.nd)
