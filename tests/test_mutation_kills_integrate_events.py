@@ -265,6 +265,30 @@ def test_the_compiled_loop_stops_at_the_step_limit(monkeypatch):
     assert exc.value.result.status == 1 and exc.value.result.steps == 6
 
 
+@pytest.mark.parametrize("duration, max_step, t6", [
+    # T = 20 s: the first step is 1e-2 (not 1e-3 T = 0.02): 0.01, 0.02, 0.04, 0.08, then
+    # 0.16 cut at the profile's kink 0.25, then max_step 0.2: the 6th step ends at 0.45
+    # (a first step of 0.02 reaches 0.65)
+    ("20", "0.2", "0.45"),
+    # max_step 1e-4 < 1e-3 T: every step 1e-4, the 6th ends at 6e-4 (a first step of
+    # 1e-3 T reaches 1.5e-3)
+    ("1", "1.0e-4", "0.0006")])
+def test_the_first_step_is_capped_by_max_step_and_by_10_ms(monkeypatch, duration, max_step,
+                                                              t6):
+    """The first step, min(max_step, 1e-3 T, 1e-2) s, in both loops (the free fall's
+    error estimate is zero, so the steps double from it): MAX_STEPS = 5 stops each run
+    at the end of its 6th step, where the two loops must agree with the hand sum."""
+    from test_mutation_kills_integrate import TROLLEY
+    from test_mutation_kills_integrate_loop import FREE, FREE_INITIAL
+    monkeypatch.setattr(integ, "MAX_STEPS", 5)
+    model = _scene("free", TROLLEY, FREE.replace("duration: 1\n", f"duration: {duration}\n")
+                   .replace("max_step: 0.2", f"max_step: {max_step}"))
+    for fast in (False, True):
+        with pytest.raises(integ.AnalysisError) as exc:
+            simulate(model, initial=FREE_INITIAL, fast=fast)
+        assert str(exc.value) == f"more than 5 steps at t = {t6} s; raise analysis.tolerance"
+
+
 @needs_numba
 def test_the_compiled_step_in_the_python_loop():
     """fast="step": the Python loop calling fast.py's compiled step with the stepper's

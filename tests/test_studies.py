@@ -355,6 +355,25 @@ def test_study_quick(name, tmp_path, capsys):
     CHECKS[name]({os.path.basename(p): p for p in written})
 
 
+def test_accuracy_runs_its_studies_then_the_validation_table(tmp_path, capsys, monkeypatch):
+    """`cranefe study accuracy` on two of its studies (the whole list: the slow test
+    below; each study's values: test_study_quick): each study's tables, then
+    validation.csv and docs/validation.md; every listed study exists."""
+    from cranefe.studies import NAMES, accuracy
+    assert set(accuracy.ACCURACY) <= set(NAMES)
+    monkeypatch.setattr(accuracy, "ACCURACY", ("drive", "eigensolvers"))
+    (tmp_path / "results").mkdir()
+    (tmp_path / "docs").mkdir()
+    assert main(["study", "accuracy", "--quick", "--out", str(tmp_path / "results")]) == 0
+    out = capsys.readouterr().out
+    assert "validation.csv" in out and (tmp_path / "docs" / "validation.md").exists()
+    assert "drive_reduction.csv" in out and "eigensolvers.csv" in out
+    assert "rope_convergence.csv" not in out
+    CHECKS["drive"]({"drive_reduction.csv": str(tmp_path / "results" / "drive_reduction.csv")})
+    CHECKS["eigensolvers"]({"eigensolvers.csv": str(tmp_path / "results" / "eigensolvers.csv")})
+
+
+@pytest.mark.slow
 def test_accuracy_runs_every_accuracy_study(tmp_path, capsys):
     from cranefe.studies.accuracy import ACCURACY
     (tmp_path / "results").mkdir()
