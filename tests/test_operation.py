@@ -249,14 +249,15 @@ def test_bessel_reference_solves_the_variable_length_pendulum():
 @pytest.mark.parametrize("v", [0.5, -0.5])
 def test_hoisting_and_lowering_with_sway_follow_the_bessel_solution(tmp_path, v):
     """Lowering (10 -> 20 m) or hoisting (20 -> 10 m) at 0.5 m/s with a 0.01 rad sway on
-    a very stiff rope (EA/m g = 1e5): the sway angle follows the linear closed form to
+    a stiff rope (EA/m g = 1e4): the sway angle follows the linear closed form to
     1e-3 of the initial amplitude (the nonlinearity theta0^2/16 ~ 1e-5; the rope's
-    stretch ~1e-5 of l)."""
+    stretch ~1e-4 of l; measured 3.9e-5 and 2.2e-4, with EA ten times higher 3.7e-5
+    and 2.1e-4 in three times the steps)."""
     l0 = 10.0 if v > 0 else 20.0
     th0, R = 0.01, 0.5
     path = scene(tmp_path, WINCH, f"  duration: 20\n  tolerance: 1.0e-9\n  output_step: 0.05\n"
                  f"  drives:\n    hoist: {{drum: hoist, profile: {{type: table, speed: "
-                 f"[[0, {-v / R}]]}}}}\n", Z=40 - l0, MASS=1000, EAVAL=1.0e9)
+                 f"[[0, {-v / R}]]}}}}\n", Z=40 - l0, MASS=1000, EAVAL=1.0e8)
     model = load(path)
     mech = mechanism(model)
     e = np.array([np.sin(th0), -np.cos(th0)])        # x, z along the rope, downwards
