@@ -3,9 +3,8 @@ forms and against finite differences of its own energy, so the linear core (whic
 it at the reference positions) and the large-motion engine share one verified kernel."""
 
 import numpy as np
-import pytest
 
-from cranefe.elements import dashpot_coefficients, hencky_energy, rope_force
+from cranefe.elements import hencky_energy, rope_force
 
 
 def _tackle():
@@ -75,42 +74,3 @@ def test_force_and_tangent_are_derivatives_of_the_energy():
         fd_K[:, i] = -(fp - fm) / (2 * h)
     np.testing.assert_allclose(force, fd_force, rtol=1e-6, atol=1e-6 * np.abs(force).max())
     np.testing.assert_allclose(K, fd_K, rtol=1e-6, atol=1e-7 * np.abs(K).max())
-
-
-def test_dashpots_take_the_rayleigh_quotient_along_each_pull():
-    """b_i = psi_i k_i / (2 pi w_i), w_i^2 = x^T K x / x^T M x with x = M^-1 r_i and
-    K = sum_s k_s r_s r_s^T built here as a matrix (elements.dashpot_coefficients writes
-    it as sum_s k_s A_si^2 / A_ii); a slack element (k = 0) has no dashpot and adds no
-    stiffness; a row scaled towards zero keeps a finite b; a zero row takes trace(M^-1 K)."""
-    rng = np.random.default_rng(7)
-    R = rng.standard_normal((3, 4))
-    m = np.array([500.0, 800.0, 40.0, 1200.0])
-    k = np.array([2.0e6, 0.0, 7.0e5])
-    psi = np.array([0.3, 0.2, 0.1])
-    K = (R.T * k) @ R
-    b = dashpot_coefficients(R, 1.0 / m, k, psi)
-    for i in (0, 2):
-        x = R[i] / m
-        w = np.sqrt(x @ K @ x / (x @ (m * x)))
-        assert b[i] == pytest.approx(psi[i] * k[i] / (2 * np.pi * w), rel=1e-13)
-    assert b[1] == 0.0
-    # alone, the element's own frequency k r^T M^-1 r
-    b0 = dashpot_coefficients(R[:1], 1.0 / m, k[:1], psi[:1])
-    assert b0[0] == pytest.approx(psi[0] * k[0] / (2 * np.pi * np.sqrt(
-        k[0] * R[0] @ (R[0] / m))), rel=1e-13)
-    # a row tending to zero (a rope the coordinates hardly stretch): its own term in K
-    # vanishes as eps^2, the others' stay (x = M^-1 r_2 keeps its direction): b finite
-    x = R[2] / m
-    K2 = K - k[2] * np.outer(R[2], R[2])
-    w2 = (x @ K2 @ x, k[2] * (R[2] @ x) ** 2)
-    for eps in (1e-3, 1e-9, 1e-100):
-        Rs = R.copy()
-        Rs[2] *= eps
-        w = np.sqrt((w2[0] + eps ** 2 * w2[1]) / (x @ (m * x)))
-        assert dashpot_coefficients(Rs, 1.0 / m, k, psi)[2] == pytest.approx(
-            psi[2] * k[2] / (2 * np.pi * w), rel=1e-12)
-    R[2] = 0.0
-    K = (R.T * k) @ R
-    bz = dashpot_coefficients(R, 1.0 / m, k, psi)
-    assert bz[2] == pytest.approx(psi[2] * k[2] / (2 * np.pi * np.sqrt(np.trace(K / m))),
-                                  rel=1e-13)

@@ -548,19 +548,29 @@ def test_two_torque_drums_have_their_own_columns_of_G():
     np.testing.assert_allclose(np.abs(G[:, :mech.nx]).sum(1), [1.0, 1.0], rtol=1e-12)
 
 
-def test_a_level_tag_line_without_sway_has_no_dashpot():
-    """The tag line level with its guided load: its row of G is zero (r^T M^-1 r = 0, no
-    frequency, no dashpot) while the trolley stretches it; the hoist rope's dashpot by
-    hand (b = psi c / (2 pi w), w^2 = c/m)."""
+def test_a_level_tag_line_without_sway_keeps_a_finite_dashpot():
+    """The tag line level with its guided load: its row of G is zero (no coordinate
+    stretches it) while the trolley stretches it at L' = -s'. Its dashpot takes the
+    frequency of the one mode at rest (no mode strains it: the lowest, the hoisting
+    mode w0^2 = c_h0 / m), b = psi sqrt(c c0) / (2 pi w0) (c0 = EA / 6 m), and acts on no
+    coordinate; the hoist rope's dashpot by hand (b = psi c / (2 pi w), w^2 = c/m at
+    every length); the forces equal Mechanism's."""
+    from cranefe.analysis.operation import profiles
     mech = _mech("tag line", "{sway: false, damping: exact}")
     lean = Lean(mech)
     taut = np.array([True, True])
+    mot = profiles.trapezoid(2.0, 1.0, 1.0)
+    w0 = np.sqrt(1.0e7 / 10.0 / 1000.0)
     for t in (0.5, 1.5):
         q, v = mech.q0.copy(), np.array([0.2])
         ev = lean.evaluate(t, q, v, taut, lean.kin(t))
         ref = mech.evaluate(t, q, v, taut)
         np.testing.assert_allclose(ev._G[1], [0.0], atol=0)
-        assert ev.Sd[1] == 0.0 and ref.Sd[1] == 0.0
+        s, ds = mot(t)[:2]
+        Lt = 6.0 - s
+        bt = 0.2 * np.sqrt(1.0e5 / Lt * 1.0e5 / 6.0) / (2 * np.pi * w0)
+        assert ev.Sd[1] == pytest.approx(bt * -ds, rel=RTOL)
+        assert ref.Sd[1] == pytest.approx(bt * -ds, rel=RTOL)
         L = 10.0 - q[0]
         c = 1.0e7 / L
         b = 0.3 * c / (2 * np.pi * np.sqrt(c / 1000.0))

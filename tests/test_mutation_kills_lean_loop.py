@@ -136,10 +136,10 @@ def test_kinematics_powers_and_energy_equal_lean(case, eff, monkeypatch):
             v = rng.uniform(-1, 1, mech.n)
             ev = lean.evaluate(t, q, v, taut, ref)
             lean.powers(ev)
-            Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope, damped = fd[:11]
+            Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope, damped = fd[:11]
             K0 = np.zeros((0, 0))
             out = fast._forces(q, v, Dm, kt[2], kt[3], Af, extra, kt[7], EA, kt[8], taut,
-                               psi, invM, Fg, D, falls, span_rope, damped, False, K0, K0)
+                               beta, invM, Fg, D, falls, span_rope, damped, False, K0, K0)
             P = max(abs(ev.P_drive), abs(ev.P_diss), abs(ev.P_wound), 1.0)
             np.testing.assert_allclose(loop._powers(out, kt, taut, fd),
                                        [ev.P_drive, ev.P_diss, ev.P_wound], rtol=0,
@@ -147,8 +147,8 @@ def test_kinematics_powers_and_energy_equal_lean(case, eff, monkeypatch):
             E = lean.energy(ev, taut)
             np.testing.assert_allclose(loop._energy(out, kt, q, v, taut, fd, st.M), E,
                                        rtol=0, atol=1e-10 * (max(map(abs, E)) + 1))
-            F, r = loop._force_rate(out, EA)
-            F1, r1, _ = rec._force_rate(ev)
+            F, r = loop._force_rate(out, EA, taut)
+            F1, r1, _ = rec._force_rate(ev, taut)
             sc = np.abs(F1).max() + 1.0
             np.testing.assert_allclose(F, F1, rtol=0, atol=1e-10 * sc)
             np.testing.assert_allclose(r, r1, rtol=0, atol=1e-10 * (np.abs(r1).max() + 1))

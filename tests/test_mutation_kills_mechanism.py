@@ -863,15 +863,14 @@ def test_inextensible_ropes_take_the_reference_length():
 
 def test_damped_motor_arm_and_its_poses():
     """damping: exact on the arm's load rope T-H: its row G = (e_x, e_z, -e . dT/du) with
-    dT/du = (-sin phi, -cos phi) (u = 4 phi), w^2 = c (G_x^2/m + G_z^2/m + G_u^2/M_J),
-    M_J = (I_O + rotor) / rho^2 (the joint's mass with the others held); the motor's C
-    and the dashpot's b G G^T add. poses(t, {drive: (phi, phi')}) puts the tip at
+    dT/du = (-sin phi, -cos phi) (u = 4 phi), b = psi sqrt(c c0) / (2 pi w0) (w0 the
+    mode at rest that most strains it: test_hook_and_sling_dashpots_take_their_modes);
+    the motor's C and the dashpot's b G G^T add. poses(t, {drive: (phi, phi')}) puts the tip at
     (4 cos phi, 10 - 4 sin phi) and its acceleration (phi'' = 0) is centripetal."""
     mech = _scene_mech(ARM, "  duration: 2\n  drives:\n    d: {hinge: luff, gear_ratio: 30, "
                        "rotor_inertia: 0.2, motor: {stall_torque: 400, "
                        "synchronous_speed: 150}}\n", "{damping: exact}")
     rho, phi, dphi = 4.0, 0.1, 0.3
-    MJ = (IO + 0.2 * 900) / 16
     q = np.array([4.2, 5.0, rho * phi])
     v = np.array([0.1, -0.2, rho * dphi])
     taut = mech.taut0.copy()
@@ -883,7 +882,7 @@ def test_damped_motor_arm_and_its_poses():
     e = d / l
     Gr = np.array([e[0], e[1], -(e @ np.array([-s_, -c_]))])
     c = 1.0e8 / l
-    b = 0.2 * c / (2 * np.pi * np.sqrt(c * (Gr[0] ** 2 / ML + Gr[1] ** 2 / ML + Gr[2] ** 2 / MJ)))
+    b = 0.2 * np.sqrt(c * 1.0e8 / mech.L_ref[0]) / (2 * np.pi * mech.dashpot_w0[0])
     Sd = b * (Gr @ v)
     np.testing.assert_allclose(ev.Sd, [Sd, 0.0], rtol=1e-9, atol=1e-12)
     F = _arm_force(mech, q, v, taut, lambda w: 30 * 400 * (1 - 30 * w / 150)) - Sd * Gr
@@ -937,27 +936,30 @@ def test_two_springs_and_a_rope_share_the_load():
     np.testing.assert_allclose(ev.F, F, rtol=1e-9, atol=1e-9 * m * G)
     assert mech.energy(ev, mech.taut0)[2] == pytest.approx(Ue, rel=1e-7)
     # tangent: each element's k e e^T + N/d (I - e e^T) (rope: EA/L, S/L);
-    # dashpots: each b e e^T, b = psi k / (2 pi w), w^2 the axial stiffness along e over
-    # the load's mass, sum_s k_s (e_s . e)^2 / m (the load pulled along e: the springs
-    # and the rope all resist it)
+    # dashpots: each b e e^T, b = psi k / (2 pi w0) (the rope: psi sqrt(c c0) / (2 pi
+    # w0)), w0 the mode at rest that most strains it. At rest (H at [0, 0, 5]) the
+    # tangent is diagonal by symmetry: K_xx = k + N0/d + S0/5 (springs at 45 deg, their
+    # and the rope's geometric terms), K_zz = k + N0/d + EA/5; the springs' rows
+    # (+-cs, 0, -cs) strain x and z alike, so they take the softer, x (K_xx < K_zz);
+    # the vertical rope only z
+    S0, N0, d0 = EA / 5 * u, k * cs * u, np.sqrt(50)
+    w_x = np.sqrt((k + N0 / d0 + S0 / 5) / m)
+    w_z = np.sqrt((k + N0 / d0 + EA / 5) / m)
     Kh = np.zeros((3, 3))
     Ch = np.zeros((3, 3))
-    els = []
-    for a, kk, N0, d0, psi in (([-5, 0, 10], k, k * cs * u, np.sqrt(50), 0.4),
-                               ([5, 0, 10], k, k * cs * u, np.sqrt(50), 0.4),
-                               ([0, 0, 10], None, None, None, 0.2)):
+    for a, kk, psi in (([-5, 0, 10], k, 0.4), ([5, 0, 10], k, 0.4),
+                       ([0, 0, 10], None, 0.2)):
         dv = q - a
         dl = np.linalg.norm(dv)
         e = dv / dl
         if kk is None:
             kk, N = EA / dl, EA * np.log(dl / L0)
+            b = psi * np.sqrt(kk * EA / 5) / (2 * np.pi * w_z)
         else:
             N = N0 + kk * (dl - d0)
+            b = psi * kk / (2 * np.pi * w_x)
         Kh += kk * np.outer(e, e) + N / dl * (np.eye(3) - np.outer(e, e))
-        els.append((kk, e, psi))
-    for kk, e, psi in els:
-        w = np.sqrt(sum(ks * (es @ e) ** 2 for ks, es, _ in els) / m)
-        Ch += psi * kk / (2 * np.pi * w) * np.outer(e, e)
+        Ch += b * np.outer(e, e)
     np.testing.assert_allclose(ev.K, Kh, rtol=1e-9, atol=1e-9 * np.abs(Kh).max())
     np.testing.assert_allclose(ev.C, Ch, rtol=1e-9, atol=1e-9 * np.abs(Ch).max())
 
@@ -1217,12 +1219,13 @@ def test_loops_and_free_bodies_are_refused():
 
 def test_two_damped_ropes_on_a_guided_load_damp_it_at_psi_over_4pi():
     """A guided load (sway off: its height z the one coordinate) on a vertical rope and a
-    slanted one of another stiffness: the hoisting frequency is w^2 = (c_a g_a^2 + c_b g_b^2) / m
-    (g = dL/dz = the rope's vertical direction, c = EA / L). Each dashpot b = psi c /
-    (2 pi w) takes that w (the Rayleigh quotient along the rope's pull, one coordinate:
-    the same for both), so C = psi / (2 pi w) m w^2 and the load's damping ratio
-    C / (2 m w) is psi / (4 pi) exactly, as for one rope. Each rope's own frequency
-    (c g^2 / m) would give sqrt(2)-ish more."""
+    slanted one of another stiffness, at rest: the one mode has w0^2 = (c_a g_a^2 +
+    c_b g_b^2 + S_b (1 - g_b^2) / L_b) / m (g = dL/dz, c = EA / L; the static forces
+    S = c g u, u = m g_z / sum c g^2; the slanted rope's geometric stiffness). Both
+    dashpots take it (b = psi c / (2 pi w0)), so C = psi / (2 pi w0) sum c g^2 and the
+    damping ratio C / (2 m w0) is psi / (4 pi) times the ropes' share of the stiffness
+    (0.9999 here), as for one rope. Each rope's own frequency (c g^2 / m) gave C 38 %
+    higher."""
     m, psi = 800.0, 0.3
     text = ("cranefe: 1\nname: two ropes\nplane: xz\nnodes:\n  A: [0, 0, 10]\n"
             "  B: [3, 0, 8]\n  H: [0, 0, 0]\nground: [A, B]\nmasses: {H: 800}\nropes:\n"
@@ -1230,12 +1233,59 @@ def test_two_damped_ropes_on_a_guided_load_damp_it_at_psi_over_4pi():
             "  b: {EA: 5.0e6, psi: 0.3, path: [B, H]}\n")
     mech = _scene_mech(text, "  duration: 1\n", "{sway: false, damping: exact}")
     assert mech.nx == 1
-    z = -0.01
-    ev = mech.evaluate(0.0, np.array([z]), np.zeros(1), mech.taut0)
-    ka = 0.0
+    ev = mech.evaluate(0.0, mech.q0, np.zeros(1), mech.taut0)
+    c, g, Ls = [], [], []
     for (x, h), EA in (((0.0, 10.0), 2.0e6), ((3.0, 8.0), 5.0e6)):
-        L = np.hypot(x, h - z)
-        ka += EA / L * ((z - h) / L) ** 2          # c g^2
-    w = np.sqrt(ka / m)
-    assert ev.C[0, 0] == pytest.approx(psi / (2 * np.pi * w) * ka, rel=1e-12)
-    assert ev.C[0, 0] / (2 * m * w) == pytest.approx(psi / (4 * np.pi), rel=1e-12)
+        L = np.hypot(x, h)
+        c.append(EA / L)
+        g.append(-h / L)
+        Ls.append(L)
+    c, g = np.array(c), np.array(g)
+    ka = c @ g ** 2
+    u = -m * G / ka                                    # the static sag (down), S = c g u
+    Sb = c[1] * g[1] * u
+    w0 = np.sqrt((ka + Sb * (1 - g[1] ** 2) / Ls[1]) / m)
+    assert Sb > 100.0                                  # the geometric term is there
+    assert ev.C[0, 0] == pytest.approx(psi / (2 * np.pi * w0) * ka, rel=1e-10)
+    share = ka / (m * w0 ** 2)
+    assert ev.C[0, 0] / (2 * m * w0) == pytest.approx(psi / (4 * np.pi) * share, rel=1e-10)
+
+
+def test_hook_and_sling_dashpots_take_their_modes():
+    """A light hook (200 kg) on a hoist rope (c_h = 1e6 N/m, psi 0.2) carries a heavy
+    load (5000 kg) on a stiff sling (c_s = 2e7 N/m, psi 0.1), sway off: at rest K =
+    [[c_h + c_s, -c_s], [-c_s, c_s]], M = diag(200, 5000) (heights of hook and load),
+    whose two modes (closed form of the 2x2 problem) are the hoisting mode (hook and
+    load together on the hoist rope) and the hook's own between the ropes. Each rope's
+    dashpot takes the mode that stores the most of its strain energy (r phi)^2 / w^2:
+    the hoist rope the hoisting mode, the sling the hook's. So the hoisting mode's
+    damping ratio phi^T C phi / (2 w) is psi_h / (4 pi) times the hoist rope's share of
+    its energy (0.957) plus the sling's small part: 0.0152 of psi_h / (4 pi) = 0.0159.
+    The hook's own frequency (sqrt((c_h + c_s) / m_h), the Rayleigh quotient along
+    M^-1 r) would give 0.0007, the hoist rope's own (sqrt(c_h / m_h)) 0.0029."""
+    mh, ml, ch, cs = 200.0, 5000.0, 1.0e6, 2.0e7
+    text = ("cranefe: 1\nname: hook and sling\nplane: xz\nnodes:\n  S: [0, 0, 30]\n"
+            "  K: [0, 0, 20]\n  H: [0, 0, 15]\nground: [S]\nmasses: {K: 200, H: 5000}\n"
+            "ropes:\n  hoist: {EA: 1.0e7, psi: 0.2, path: [S, K]}\n"
+            "  sling: {EA: 1.0e8, psi: 0.1, path: [K, H]}\n")
+    mech = _scene_mech(text, "  duration: 1\n", "{sway: false, damping: exact}")
+    assert mech.n == 2
+    # det(K - w^2 M) = 0: mh ml w^4 - (mh cs + ml (ch + cs)) w^2 + ch cs = 0
+    a, b_, c = mh * ml, -(mh * cs + ml * (ch + cs)), ch * cs
+    lam = np.array([(-b_ - s * np.sqrt(b_ * b_ - 4 * a * c)) / (2 * a) for s in (1, -1)])
+    w = np.sqrt(lam)
+    # mode shapes (hook, load): (c_s, c_s - ml w^2)... normalised to phi^T M phi = 1
+    phi = np.array([[cs, ch + cs - mh * x] for x in lam])       # rows: modes
+    phi /= np.sqrt(mh * phi[:, 0] ** 2 + ml * phi[:, 1] ** 2)[:, None]
+    strain_h = phi[:, 0]                      # hoist rope: L = 30 - z_K, |dL/dz_K| = 1
+    strain_s = phi[:, 0] - phi[:, 1]          # sling: L = z_K - z_H
+    kh = int(np.argmax(strain_h ** 2 / lam))
+    ks = int(np.argmax(strain_s ** 2 / lam))
+    assert (kh, ks) == (0, 1)
+    np.testing.assert_allclose(mech.dashpot_w0, [w[kh], w[ks]], rtol=1e-10)
+    ev = mech.evaluate(0.0, mech.q0, np.zeros(2), mech.taut0)
+    zeta = phi[0] @ ev.C @ phi[0] / (2 * w[0])
+    hand = 0.2 / (4 * np.pi) * ch * strain_h[0] ** 2 / lam[0] + \
+        0.1 * cs * strain_s[0] ** 2 / (4 * np.pi * w[0] * w[1])
+    assert zeta == pytest.approx(hand, rel=1e-10)
+    assert 0.95 * 0.2 / (4 * np.pi) < zeta < 0.2 / (4 * np.pi)

@@ -160,18 +160,19 @@ def _lowering(tol, duration=24.0):
 def test_peak_rope_force_within_the_tolerance_and_its_order(monkeypatch):
     """The step control bounds the local error of the rope forces (integrate.py,
     `FORCE_TOL`), so the peak force of a lowering's stop (where the load's axial
-    ringing meets the deceleration) converges with the tolerance: against the run at
-    1e-9 (its own error 3.2e-5, measured against 1e-10, which takes 2.5 times as long)
-    the default tolerance 1e-7 is within 8.6e-4 (asserted 1.5e-3, the ~1e-3 the default
-    is chosen for), and the error falls as tol^(2/3) (the trapezoidal rule's h^2 with
-    h ~ tol^(1/3); measured slope 0.79 over 1e-6..1e-8, 1.44e-4 at 1e-8, asserted
-    0.55..1.1). The position-only estimate
-    (FORCE_TOL = 0: the error measure before) leaves 3.9e-3 at the default tolerance
-    (asserted > 2.5e-3: the force measure is what makes the difference)."""
+    ringing meets the deceleration; damping off, so that the ringing the force measure
+    is for is not damped away) converges with the tolerance: against the run at 1e-9
+    (its own error 2.2e-5, measured against 1e-10, which takes 8 times as long) the
+    default tolerance 1e-7 is within 3.0e-4 (asserted 1.5e-3, the ~1e-3 the default is
+    chosen for), and the error falls as tol^(2/3) (the trapezoidal rule's h^2 with
+    h ~ tol^(1/3); measured slope 0.74 over 1e-6..1e-8, asserted 0.55..1.1). The
+    position-only estimate (FORCE_TOL = 0: the error measure before) leaves 1.3e-2 at
+    the default tolerance (asserted > 2.5e-3: the force measure is what makes the
+    difference)."""
     from cranefe.analysis.operation import integrate
 
     def peak(tol):
-        return simulate(_lowering(tol)).rope_force_max
+        return simulate(_lowering(tol).with_effects(damping="none")).rope_force_max
     ref = peak(1e-9)
     tols = np.array([1e-6, 1e-7, 1e-8])
     errs = np.array([np.abs(peak(t) / ref - 1).max() for t in tols])
@@ -274,7 +275,11 @@ def same_run(a, b, rel, times_atol=0.0, energy_rel=1e-3):
               "drive_speed", "drive_torque", "sway_deg"):
         x, y = getattr(a, k), getattr(b, k)
         scale = np.nanmax(np.abs(x), initial=0.0) + 1e-300
-        np.testing.assert_allclose(y, x, rtol=0, atol=rel * scale, err_msg=k)
+        # the time of a smooth maximum is ill-conditioned: force differences d move it
+        # by sqrt(2 d / |S''|), ~4e-6 s for d = 2e-9 S at 2.6 Hz: 1e-6 of the scale at
+        # least (measured 6.6e-8 s of 0.64 s on the three-drive run)
+        tol = max(rel, 1e-6) if k == "rope_force_max_time" else rel
+        np.testing.assert_allclose(y, x, rtol=0, atol=tol * scale, err_msg=k)
     E = max(abs(x) for x in a.energy.values())
     for k in a.energy:
         assert b.energy[k] == pytest.approx(a.energy[k], rel=0, abs=rel * E), k

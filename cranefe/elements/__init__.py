@@ -14,8 +14,8 @@ from .beams import (beam_axes, beam_geometric, beam_mass, beam_stiffness, releas
                     shear_factors, to_global, transform)
 from .bodies import load_stiffness, rigid_mass, skew
 from .motion import IDENTITY_MOTION, compose, hinge_motion, slider_motion
-from .ropes import (RopeForce, dashpot_coefficients, elongation_rows, hencky_energy,
-                    hencky_tension, projected_tangent, rope_force, rope_mass, rope_spans, rope_state,
+from .ropes import (RopeForce, elongation_rows, hencky_energy, hencky_tension,
+                    projected_tangent, rope_force, rope_mass, rope_spans, rope_state,
                     span_geometry, spring_state, string_stiffness)
 
 __all__ = ["beam_axes", "beam_geometric", "beam_mass", "beam_stiffness", "shear_factors",
@@ -24,4 +24,4 @@ __all__ = ["beam_axes", "beam_geometric", "beam_mass", "beam_stiffness", "shear_
            "span_geometry", "string_stiffness", "rope_force", "RopeForce",
            "hencky_tension", "hencky_energy", "rope_spans", "rope_state", "spring_state",
            "projected_tangent", "IDENTITY_MOTION", "compose", "hinge_motion",
-           "slider_motion", "dashpot_coefficients"]
+           "slider_motion"]

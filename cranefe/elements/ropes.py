@@ -189,35 +189,6 @@ def _add_span_blocks(K, a, b, g):
         np.add.at(K4, (i, slice(None), j, slice(None)), sgn * g)
 
 
-def dashpot_coefficients(rows, inv_mass, k, psi):
-    """Rope and spring dashpots `b = psi k / (2 pi w)` (Heletiy eq. 12), with `w` each
-    element's axial frequency at the current state.
-
-    The elements' elongation rows r_i (n, m) over coordinates of inverse masses `inv_mass`
-    (m,) with axial stiffnesses `k` (n,) (0 for a slack rope): `w_i` is the Rayleigh
-    quotient of the whole axial stiffness `K = sum_s k_s r_s r_s^T` along the motion
-    `x = M^-1 r_i` that the element's pull drives,
-
-        w_i^2 = x^T K x / x^T M x = sum_s k_s A_si^2 / A_ii,   A = R M^-1 R^T.
-
-    For an element that shares its masses with no other, `w_i^2 = k_i r_i^T M^-1 r_i`, its
-    own frequency; two equal ropes on one load both get the load's hoisting frequency
-    `sqrt(2 k / m)`, so each damps it with `zeta = psi / (4 pi)`. For a rope that the free
-    coordinates hardly stretch (a row tending to 0, stretched by a kinematic motion) only
-    its own term vanishes (x keeps its direction): its b stays finite, where its own
-    frequency `k_i r_i^T M^-1 r_i` would tend to 0 and b to infinity. A row that is exactly
-    zero takes `w^2 = trace(M^-1 K) = sum_s k_s A_ss`, the limit for one coordinate (a
-    guided load), an upper bound otherwise; its dashpot then acts on no coordinate, only
-    its force is reported. A slack rope (k = 0) has b = 0.
-
-    Returns b (n,)."""
-    A = (rows * inv_mass) @ rows.T
-    a = np.diag(A)
-    w2 = np.where(a > 0, (A * A) @ k / np.where(a > 0, a, 1.0), k @ a)
-    ok = (k > 0) & (w2 > 0)
-    return np.where(ok, psi * k / (2 * np.pi * np.sqrt(np.where(ok, w2, 1.0))), 0.0)
-
-
 def spring_state(x, node_a, node_b, k, d_ref, N_ref):
     """Axial springs between nodes: force N = N_ref + k (d - d_ref) along the current
     direction (tension positive), gradient rows and tangent `k e e^T + N/d (I - e e^T)`.

@@ -9,8 +9,8 @@ iteration and the local error estimate of the step - in one compiled function
 - span vectors `d = D q + d_kin(t)`, lengths l, unit vectors e, rope lengths
   `L = sum_s f_s l_s + extra`, stretch `ln(L/L0)`, Hencky force `S = EA ln(L/L0)`
   (taut ropes), rows `G = dL/dq = sum_s f_s e_s . D_s`, elongation rate
-  `G v + R omega + (e . v_kin) B`, dashpot `b = psi / (2 pi) sqrt(c / G M^-1 G)` with
-  `c = EA/L` (docs/operations.md "Mechanics"), `F = F_g - (S + S_d) G`;
+  `G v + R omega + (e . v_kin) B`, dashpot `b = beta sqrt(c)` with `c = EA/L`
+  (Mechanism._dashpot_frequencies; docs/operations.md "Damping"), `F = F_g - (S + S_d) G`;
 - tangent `K = c G^T G + sum_s f_s S/l (D_s^T D_s - (e.D_s)^T (e.D_s))`,
   `C = b G^T G`, Newton matrix `4/h^2 M + 2/h C + K`, LU with partial pivoting kept
   for the modified Newton iterations, made afresh when a correction shrinks by less
@@ -51,7 +51,7 @@ def _jit(f):
 
 
 @_jit
-def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, psi, invM, Fg,
+def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, beta, invM, Fg,
             D, falls, span_rope, damped, tangent, K, C):
     """Lean.evaluate's forces (and with `tangent` K, C in place) at (q, v).
 
@@ -111,27 +111,8 @@ def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, psi, invM, Fg,
     Sd = np.zeros(nr)
     b = np.zeros(nr)
     if damped:
-        # elements.dashpot_coefficients: w_r^2 = sum_s c_s A_sr^2 / A_rr, A = G M^-1 G^T
-        A = np.zeros((nr, nr))
         for r in range(nr):
-            for s in range(r + 1):
-                acc = 0.0
-                for c in range(nx):
-                    acc += G[r, c] * G[s, c] * invM[c]
-                A[r, s] = acc
-                A[s, r] = acc
-        tr = 0.0                                # trace(M^-1 K): a zero row's w^2
-        for s in range(nr):
-            tr += cL[s] * A[s, s]
-        for r in range(nr):
-            w2 = tr
-            if A[r, r] > 0.0:
-                w2 = 0.0
-                for s in range(nr):
-                    w2 += cL[s] * A[s, r] * A[s, r]
-                w2 /= A[r, r]
-            if cL[r] > 0.0 and w2 > 0.0:
-                b[r] = psi[r] * cL[r] / (TWO_PI * math.sqrt(w2))
+            b[r] = beta[r] * math.sqrt(cL[r])     # Mechanism.evaluate: beta sqrt(c)
             Sd[r] = b[r] * edot[r]
     F = Fg.copy()
     for r in range(nr):
@@ -202,7 +183,7 @@ def _solve(LU, piv, b):
 
 @_jit
 def _step(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega, taut,
-          psi, invM, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max,
+          beta, invM, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max,
           fscale, sfloor, tol):
     """One trapezoidal step (Stepper.step with Lean.evaluate) and its error.
 
@@ -227,7 +208,7 @@ def _step(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega,
     for _ in range(newton_max):
         v1 = c2 * (q1 - q0) - v0
         a1 = c1 * (q1 - qb) - a0
-        out = _forces(q1, v1, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, psi, invM,
+        out = _forces(q1, v1, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, beta, invM,
                       Fg, D, falls, span_rope, damped, fresh, K, C)
         F = out[0]
         its += 1
@@ -278,14 +259,14 @@ def _step(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega,
 
 @_jit
 def _step_packed(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega,
-                 taut, psi, invM, Fg, D, falls, span_rope, damped, M, newton_tol,
+                 taut, beta, invM, Fg, D, falls, span_rope, damped, M, newton_tol,
                  newton_max, fscale, sfloor, tol):
     """`_step` with its arrays packed into one (a returned array costs a boxing each):
     (status, err, iterations, tangents, [q1 v1 a1 q v F | G | l | e | L lam loglam S
     Sd edot cL])."""
     st, q1, v1, a1, err, its, tg, out, qi, vi = _step(
         q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega, taut,
-        psi, invM, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max, fscale,
+        beta, invM, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max, fscale,
         sfloor, tol)
     F, G, l, e, L, lam, loglam, S, Sd, edot, cL = out
     n, nr, ns = q0.shape[0], L.shape[0], l.shape[0]
@@ -304,7 +285,7 @@ class FastLean(Lean):
         super().__init__(mech)
         m = mech
         self._c = (self.Dm, self.Af, m.extra.astype(float), m.EA.astype(float),
-                   m.psi.astype(float), np.ascontiguousarray(m.invM_x, float),
+                   m.beta.astype(float), np.ascontiguousarray(m.invM_x, float),
                    np.ascontiguousarray(m.Fg, float), np.ascontiguousarray(m.D, float),
                    m.falls.astype(float), np.asarray(m.span_rope, np.int64))
         self._empty = np.zeros(0)
@@ -318,11 +299,11 @@ class FastLean(Lean):
         """-> (status, q1, v1, a1, err, iterations, tangents, ev of the last iterate)."""
         kt = self.kin(t1)
         dk, dvk, L0, romega = kt[2], kt[3], kt[7], kt[8]
-        Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope = self._c
+        Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope = self._c
         st, err, its, tg, buf = _step_packed(
             q0, v0, a0, h, self._empty if jerk is None else jerk, jerk is not None,
             Dm, dk, self._empty if dvk is None else dvk, Af, extra, L0, EA, romega,
-            taut, psi, invM, Fg, D, falls, span_rope, bool(self.damped), M,
+            taut, beta, invM, Fg, D, falls, span_rope, bool(self.damped), M,
             newton_tol, newton_max, self._empty if fscale is None else fscale, sfloor,
             tol)
         q1, v1, a1, qi, vi, F, G, l, e, L, lam, loglam, S, Sd, edot, cL = (

@@ -25,7 +25,6 @@ import math
 
 import numpy as np
 
-from ... import elements as kernels
 from .mechanism import Eval
 
 
@@ -244,8 +243,8 @@ class Lean:
             S = np.where(taut, EA * loglam, 0.0)
             cL = np.where(taut, EA / L, 0.0)
         if self.damped:
-            # b = psi c / (2 pi w), w from the ropes' Rayleigh quotient (Mechanism.evaluate)
-            b = kernels.dashpot_coefficients(G, m.invM_x, cL, m.psi)
+            # b = psi c / (2 pi w0 sqrt(c / c0)) = beta sqrt(c) (Mechanism.evaluate)
+            b = m.beta * np.sqrt(cL)
             Sd = b * edot
             St = S + Sd
         else:

@@ -240,10 +240,10 @@ def _kin(t, kd):
 def _trial(t, q, v, a, h, taut, jerk, has_jerk, kd, fd, M, newton_tol, newton_max,
            fscale, sfloor, tol):
     """fast._step at t + h with the kinematics there."""
-    Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope, damped = fd[:11]
+    Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope, damped = fd[:11]
     kt = _kin(t + h, kd)
     return _fast._step(q, v, a, h, jerk, has_jerk, Dm, kt[2], kt[3], Af, extra, kt[7],
-                       EA, kt[8], taut, psi, invM, Fg, D, falls, span_rope, damped, M,
+                       EA, kt[8], taut, beta, invM, Fg, D, falls, span_rope, damped, M,
                        newton_tol, newton_max, fscale, sfloor, tol) + (kt,)
 
 
@@ -501,11 +501,11 @@ def _run(t_stop, T, bps, max_step, hmin, max_steps, newton_tol, newton_max, tol,
                 ev_t[ne], ev_k[ne], ev_s[ne] = t, k, taut[k]
             ist[I_NEV] = ne + 1
             # a, ev = Stepper.accel(t, q, v, taut): the forces with the new taut set
-            Dm, Af, extra, EA, psi, invM, Fgv, D, falls, span_rope, damped = fd[:11]
+            Dm, Af, extra, EA, beta, invM, Fgv, D, falls, span_rope, damped = fd[:11]
             kt = _kin(t, kd)
             K0 = np.zeros((0, 0))
             ev = _fast._forces(q, v, Dm, kt[2], kt[3], Af, extra, kt[7], EA, kt[8], taut,
-                               psi, invM, Fgv, D, falls, span_rope, damped, False, K0, K0)
+                               beta, invM, Fgv, D, falls, span_rope, damped, False, K0, K0)
             for i in range(n):
                 a[i] = ev[0][i] / M[i]
             Fn, rn = _force_rate(ev, EA, taut)
@@ -641,8 +641,8 @@ def prepare(st, spec):
           np.asarray(m.kin_b, np.bool_), pd_k, pd_mot, int(m.nd),
           np.asarray(m.L0_ref, float), np.ascontiguousarray(lean.W, float),
           np.ascontiguousarray(m.Rd, float), np.ascontiguousarray(m.E, float))
-    Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope = lean._c
-    fd = (Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope, bool(lean.damped),
+    Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope = lean._c
+    fd = (Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope, bool(lean.damped),
           np.asarray(m.lam_ref, float), bool(lean.wound))
     return kd, fd, dmap
 

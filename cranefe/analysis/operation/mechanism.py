@@ -23,6 +23,7 @@ at t = 0.
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import eigh
 
 from ...errors import AnalysisError, ModelError
 from ...model.model import GROUND
@@ -89,6 +90,7 @@ class Mechanism:
             self._inextensible(model)
         if self.flex is not None:        # the static state with the elastic structure
             self.flex.settle(self)
+        self._dashpot_frequencies()
 
     # ----------------------------------------------------------------- kinematics
     def _tree(self, model):
@@ -898,35 +900,13 @@ class Mechanism:
         else:
             K[:nx, :nx] = (G.T * cL) @ G + (w @ self.DtD).reshape(nx, nx) \
                 - (eD.T * w) @ eD
-        # springs' state (their dashpots share the ropes' frequencies)
-        nsp = len(self.sp_k)
-        N = np.zeros(nsp)
-        if nsp:
-            _, N, rs, Ks = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
-                                                 self.sp_dref, self.N_ref)
-            Gs = rs.reshape(nsp, -1)[:, self.free3] @ self.E
-        # damping: b = psi k / (2 pi w), k = EA/L for a rope, w the frequency of the
-        # motion its pull drives now (kernels.dashpot_coefficients): ropes, the drums'
-        # angles and springs in one Rayleigh quotient
+        # damping: b = psi c / (2 pi w) with w = w0 sqrt(c / c0): w0 the frequency of
+        # the mode that most strains the rope at the static state (_dashpot_frequencies),
+        # carried along with its stiffness c = EA/L; b = beta sqrt(c)
         Sd = np.zeros(nr)
         b = np.zeros(nr)
-        bs = np.zeros(nsp)
-        if damping and self.damped and (nr or nsp):
-            invM = self.invM_x
-            if self.nJ:
-                # a joint coordinate's mass with the others held: the current M_J's diagonal
-                invM = invM.copy()
-                invM[self.jb] = 1.0 / np.diag(jm.M)
-            nq = len(self.qdrums)
-            rows = np.zeros((nr + nsp, nx + nq))
-            rows[:nr, :nx] = G
-            rows[:nr, nx:] = Rd[:, self.qdrums]
-            if nsp:
-                rows[nr:, :nc] = Gs
-            bb = kernels.dashpot_coefficients(
-                rows, np.concatenate([invM, 1.0 / self.J if nq else []]),
-                np.concatenate([cL, self.sp_k]), np.concatenate([self.psi, self.sp_psi]))
-            b, bs = bb[:nr], bb[nr:]
+        if damping and self.damped and nr:
+            b = self.beta * np.sqrt(cL)
             Sd = b * edot
             F[:nx] -= G.T @ Sd
             C[:nx, :nx] += (G.T * b) @ G
@@ -955,12 +935,18 @@ class Mechanism:
             F[i] += tq
             C[i, i] -= dtq
         # springs
-        spring = None
+        nsp = len(self.sp_k)
+        N = np.zeros(nsp)
+        spring = Gs = None
         if nsp:
+            _, N, rs, Ks = kernels.spring_state(X, self.sp_a, self.sp_b, self.sp_k,
+                                                 self.sp_dref, self.N_ref)
+            Gs = rs.reshape(nsp, -1)[:, self.free3] @ self.E
             F[:nc] -= Gs.T @ N
             K[:nc, :nc] += self.E.T @ Ks[np.ix_(self.free3, self.free3)] @ self.E
             Ndot = 0.0
             if damping and self.damped:
+                bs = self.sp_bd                  # psi k / (2 pi w0), k constant
                 ddot = np.einsum("rij,ij->r", rs, V)
                 Nd = bs * ddot
                 F[:nc] -= Gs.T @ Nd
@@ -974,6 +960,7 @@ class Mechanism:
                   None, None, None, joint_torque=jt)
         if self.nJ:
             ev.MJ, ev.dMJ = jm.M, jm.dM
+        ev._rows = (G, Gs)                      # dL/dq_x, the springs' rows (setup)
         if self.flex is not None:                # the ropes' force on u (power)
             o = nc + self.nJ
             ev._flex_rope = -(G[:, o:o + self.nu].T @ (S + Sd))
@@ -1156,6 +1143,54 @@ class Mechanism:
         self.hold_torque = np.zeros(self.nd)
         for j, dd, R in zip(self.rope_drum, self.drum_of_end, self.end_radius):
             self.hold_torque[dd] += R * S0[j]
+
+    def _dashpot_frequencies(self):
+        """The dashpots' frequencies (damping: exact): each rope's and axial spring's w0,
+        the frequency of the mode that stores the largest share of its strain energy,
+        (r phi_j)^2 / w_j^2, at the static state, as the linear core's transient damping
+        picks it (analysis/damping/element.py, element_frequencies): the modes of the
+        tangent K and the mass matrix at rest (every rope taut, massless coordinates
+        condensed, rigid modes left out); an element no mode strains gets the lowest
+        frequency. A rope's dashpot is then b = psi c / (2 pi w0 sqrt(c / c0)) =
+        beta sqrt(c) at its current stiffness c = EA/L (c0 at rest): a load on one rope
+        keeps zeta = psi / (4 pi) at every rope length (w = sqrt(n^2 c / m)); a spring's
+        is psi k / (2 pi w0)."""
+        nr, nsp = len(self.ropes), len(self.sp_k)
+        self.beta, self.sp_bd = np.zeros(nr), np.zeros(nsp)
+        if not self.damped or not nr + nsp:
+            return
+        n, nx = self.n, self.nx
+        ev = self.evaluate(0.0, self.q0, np.zeros(n), np.ones(nr, bool), damping=False,
+                           powers=False)
+        G, Gs = ev._rows
+        R = np.zeros((nr + nsp, n))
+        R[:nr, :nx] = G
+        for cc, k in enumerate(self.qdrums):
+            R[:nr, nx + cc] = self.Rd[:, k]
+        if nsp:
+            R[nr:, :self.nc] = Gs
+        K = 0.5 * (ev.K + ev.K.T)
+        M = np.diag(np.asarray(self.M, float))
+        if self.nJ:
+            M[self.jb, self.jb] = ev.MJ
+        # massless coordinates (blocks) follow the others statically: K condensed
+        z = np.diag(M) <= 0
+        z[self.jb] = False
+        m = ~z
+        X = np.eye(n)[:, m]
+        if z.any():
+            X[z] = -np.linalg.lstsq(K[np.ix_(z, z)], K[np.ix_(z, m)], rcond=None)[0]
+        lam, phi = eigh(X.T @ K @ X, M[np.ix_(m, m)])
+        ok = lam > 1e-10 * max(lam.max(initial=0.0), 1e-300)
+        if not ok.any():
+            return
+        lam = lam[ok]
+        E = R @ (X @ phi[:, ok])
+        w0 = np.sqrt(lam[np.argmax(E * E / lam, axis=1)])   # all zero: the lowest
+        c0 = self.EA / ev.L
+        self.beta = self.psi * np.sqrt(c0) / (2 * np.pi * w0[:nr])
+        self.sp_bd = self.sp_psi * self.sp_k / (2 * np.pi * w0[nr:])
+        self.dashpot_w0 = w0
 
     def _inextensible(self, model):
         """Ropes as inextensible constraints L(q, t) = L0(t) (rope_elasticity: false;
