@@ -20,10 +20,10 @@ The model:
   `L0(t) = L0_ref - sum R theta(t) / lambda_ref` (drums with a prescribed profile;
   lambda_ref = exp(S0 / EA), S0 the static tension), the Hencky law
   `S = EA ln(L / L0)` for L > L0, else 0 (tension only), a dashpot `b e'` with
-  `e' = f l' + L_k'(t) + sum R omega(t)` and `b = psi c / (2 pi w)`, c = EA / L,
-  `w^2 = c sum_m f_m^2 / m` over the point masses the rope pulls (its axial frequency
-  with everything else held: docs/operations.md "Damping"); the connector's force is
-  f (S + b e');
+  `e' = f l' + L_k'(t) + sum R omega(t)` and `b = psi c / (2 pi w)`, c = EA / L, with
+  the engine's frequency w = w0 sqrt(c / c0) (w0 picked at rest, docs/operations.md
+  "Damping": `b = beta sqrt(c)`, beta from cranefe's Mechanism, so the peer integrates
+  the same equations); the connector's force is f (S + b e');
 - a node moved by a drive that a rope span ends at: an Exudyn mass point whose three
   coordinates follow the prescribed motion by coordinate constraints to the ground, their
   offsets set before each step (a pre-step user function) to the position at the step's
@@ -199,6 +199,13 @@ def simulate(model, spec, step, output_times):
     if model.effects.damping not in ("none", "exact"):
         raise NotImplementedError("the Exudyn peer has damping none or exact")
     damped = model.effects.damping == "exact"
+    beta = {}
+    if damped:
+        # the engine's dashpot law b = beta sqrt(c), with its frequencies picked at rest
+        # (Mechanism._dashpot_frequencies): the peer compares the integration, not rules
+        from ..analysis.operation.mechanism import Mechanism
+        mech = Mechanism(model, spec)
+        beta = dict(zip(mech.ropes.tolist(), mech.beta.tolist()))
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -287,10 +294,9 @@ def simulate(model, spec, step, output_times):
         touched = [n for s in load for n in (s[1], s[2]) if n in freeset]
         if len(touched) != len(set(touched)):
             raise NotImplementedError(f"rope {r.name}: two spans at one point mass")
-        kw = sum(f * f / mass[n] for _, a, b, f in load for n in (a, b) if n in freeset)
         for _, a, b, f in load:
             def force(mbs_, t, item, l, dl, stiffness, damping, f0, f=f, k=k,
-                      EA=r.EA, psi=r.psi, extra=r.extra_length, kw=kw):
+                      EA=r.EA, bk=beta.get(k, 0.0), extra=r.extra_length):
                 n, tab = at(t)
                 lk, dlk, L0, Rw = rope_table[k][n] if tab is None else tab[1][k][0]
                 L = f * l + lk + extra
@@ -298,9 +304,8 @@ def simulate(model, spec, step, output_times):
                     return 0.0                       # slack: no force, no dashpot
                 S = EA * math.log(L / L0)            # Hencky
                 if damped:
-                    # b = psi c / (2 pi w), c = EA / L, w = sqrt(c kw)
-                    S += psi * math.sqrt(EA / (L * kw)) / (2 * math.pi) * \
-                        (f * dl + dlk + Rw)
+                    # b = beta sqrt(c), c = EA / L (docs/operations.md "Damping")
+                    S += bk * math.sqrt(EA / L) * (f * dl + dlk + Rw)
                 return f * S
 
             ma = mbs.AddMarker(MarkerNodePosition(nodeNumber=node[a]))
