@@ -29,7 +29,9 @@ def crane():
 
 @pytest.fixture(scope="module")
 def result():
-    return analyse(load(SCENE), file=SCENE)
+    """The analysis without its sensitivity report (12 of its 21 s, eight swing-free
+    boundary-value problems); test_sensitivity_report makes the report itself."""
+    return analyse(load(SCENE), file=SCENE, sensitivity=False)
 
 
 @pytest.fixture(scope="module")
@@ -267,8 +269,24 @@ def test_motor_torque_of_the_optimum_is_the_imbalance(crane):
     np.testing.assert_allclose(Q, crane.proxy("dV", al), rtol=1e-9, atol=1e-6)
 
 
-def test_sensitivity_report(result):
-    s = result.sensitivity
+def test_sensitivity_report(crane, result, monkeypatch):
+    """The report's t_k and load-mass rows (the lines asserted here) of the scene's
+    optimum. Its swing-free rows solve eight boundary-value problems (10 s, checked
+    value by value by tests/test_golden_json.py's luff.portal_crane_luffing_scene and
+    the kill tests of the sway module): a stand-in here, as in
+    test_mutation_kills_luffing_configs.py's load-row test."""
+    import cranefe.analysis.luffing.analysis as an
+    from cranefe.analysis.luffing import sway
+    from cranefe.analysis.luffing.laws import standard_law
+
+    def fake_sf(proxy, alpha0, alphak, t_k, H, g, guess, which="complete"):
+        law = standard_law("cycloidal", alpha0, alphak)
+        law.status, law.message = 0, "stand-in"
+        return law
+    monkeypatch.setattr(sway, "swing_free_law", fake_sf)
+    assert result.sensitivity == {}
+    s = an.sensitivity_report(crane, crane.optimal())
+    assert result.t_k == crane.scene.t_k
     for row in s["t_k"]:                         # T_mean = S^2 / (2 t_k^2) exactly
         assert row["T_over_base"] == pytest.approx((result.t_k / row["t_k_s"]) ** 2,
                                                    rel=1e-12)

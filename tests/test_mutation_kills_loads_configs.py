@@ -38,13 +38,18 @@ def test_only_phi5_runs_every_drive_and_the_hoist_drum_its_own(tmp_path):
     l), l = 10 m) leaves no swing: the horizontal force on the load peaks at 2 m a in
     the linear limit (docs/loads.md; tolerance 1e-3 as the slider test of
     test_mutation_kills_loads_analysis.py: the exact pendulum at 0.5 deg, second
-    differences of positions stored every 0.01 s; measured there 1e-4)."""
+    differences of positions stored every 0.01 s; measured there 1e-4). after_lift_off
+    0.1 s: the hoist start (in both calls; its stiff rope's 7469 steps took 8 s of the
+    first call's 10.5 s) ends 0.1 s after its 1 s ramp instead of 3 s (2054 steps; its
+    phi5, 1.0577, the same to 5e-9: the peak is in the ramp); the travel move keeps its
+    23.2 s."""
     (tmp_path / "cart.yaml").write_text(CART)
     w = np.sqrt(G / 10.0)
     ramp = float(2 * np.pi / w)
     path = tmp_path / "s.yaml"
     path.write_text("cranefe: 1\nscene: t\nmodel: cart.yaml\nanalysis:\n  type: loads\n"
-                    "  hoist: {speed: 0.2}\n  tolerance: 1.0e-9\n  drives:\n"
+                    "  hoist: {speed: 0.2}\n  tolerance: 1.0e-9\n  after_lift_off: 0.1\n"
+                    "  drives:\n"
                     f"    travel: {{v_max: 0.5, ramp: {ramp!r}, jerk_time: 0, "
                     "distance: 6.0}\n")
     r = cranefe.loads(str(path), only=["phi5"])

@@ -81,7 +81,9 @@ def test_interrupted_sweep_resumes_with_the_missing_variants(tmp_path):
 
 
 def test_killed_sweep_process_resumes(tmp_path):
-    path = sweep_file(tmp_path, ea="{range: [1.0e7, 4.0e7], count: 300}", name="k")
+    # 120 variants (~10 ms each): the process is killed once 20 are journaled, ~100
+    # before its end (600 variants cost the resumed run 7 s more, to the same checks)
+    path = sweep_file(tmp_path, ea="{range: [1.0e7, 4.0e7], count: 60}", name="k")
     journal = tmp_path / "k.h5.journal"
     p = subprocess.Popen([sys.executable, "-m", "cranefe", "sweep", str(path),
                           "--workers", "0"], stdout=subprocess.DEVNULL,
@@ -93,12 +95,12 @@ def test_killed_sweep_process_resumes(tmp_path):
     p.send_signal(signal.SIGKILL)
     p.wait()
     before = len(read_journal(str(tmp_path / "k.h5")))
-    assert 20 <= before < 600
+    assert 20 <= before < 120
     assert main(["sweep", str(path), "--workers", "0"]) == 0
     table = read_table(tmp_path / "k.h5")
-    assert table.index.tolist() == list(range(600))
+    assert table.index.tolist() == list(range(120))
     lines = [x for x in journal.read_text().splitlines() if x.startswith('{"index"')]
-    assert len({json.loads(x)["index"] for x in lines if x.strip().endswith("}")}) == 600
+    assert len({json.loads(x)["index"] for x in lines if x.strip().endswith("}")}) == 120
 
 
 def test_invalid_variant_is_reported_and_the_rest_finish(tmp_path, capsys):
@@ -286,7 +288,15 @@ def test_reuse_is_exact_and_finds_the_structure_once():
 LUFF = os.path.join(ROOT, "models", "portal_crane_luffing_scene.yaml")
 
 
-def test_luffing_sweep_over_scene_keys(tmp_path):
+@pytest.fixture(scope="module")
+def luff_table():
+    """The luffing analysis' table of the scene as it stands (t_k 25 s, 16 t on 15 m),
+    made once for the two tests below (2 s each)."""
+    from cranefe.analysis.luffing.analysis import analyse
+    return analyse(load(LUFF), collocation=False, sensitivity=False).table
+
+
+def test_luffing_sweep_over_scene_keys(tmp_path, luff_table):
     # parameters in the scene file; outputs equal the luffing analysis of each variant,
     # and the optimum's mean energy follows eq. 16, T = S^2 / (2 t_k^2)
     from cranefe.analysis.luffing.analysis import analyse
@@ -306,10 +316,13 @@ output: l.h5
     raw = read_raw(LUFF)
     for row in done.values():
         t_k, mass = row["values"]
+        assert raw[3]["analysis"]["t_k"] == 25.0 and raw[3]["analysis"]["load"] == {
+            "mass": 16000, "rope_length": 15.0}
         scene = dict(raw[3], analysis=dict(raw[3]["analysis"], t_k=t_k,
                                            load={"mass": mass, "rope_length": 15.0}))
-        table = analyse(build(raw[0], raw[1], raw[2], scene, raw[4]), collocation=False,
-                        sensitivity=False).table
+        table = luff_table if t_k == 25.0 else analyse(   # the scene's own: made once
+            build(raw[0], raw[1], raw[2], scene, raw[4]), collocation=False,
+            sensitivity=False).table
         assert row["outputs"] == [table["optimal"]["T_mean_J"], table["linear"]["T_ratio"],
                                   table["linear"]["max_sway_deg"]]
     fast, slow = done[0]["outputs"], done[1]["outputs"]
@@ -317,10 +330,9 @@ output: l.h5
     assert fast[1] == pytest.approx(slow[1], rel=1e-12)      # the shape of a law: t_k-free
 
 
-def test_figures_are_the_documented_ones():
-    from cranefe.analysis.luffing.analysis import FIGURES, analyse
-    table = analyse(load(LUFF), collocation=False, sensitivity=False).table
-    assert all(tuple(figs) == FIGURES for figs in table.values())
+def test_figures_are_the_documented_ones(luff_table):
+    from cranefe.analysis.luffing.analysis import FIGURES
+    assert all(tuple(figs) == FIGURES for figs in luff_table.values())
 
 
 @pytest.mark.parametrize("base, param, output, entry, message", [
@@ -367,18 +379,48 @@ PINNED_SWEEPS = {   # (output, its largest value over the sweep), pinned from th
 }
 
 
-@pytest.mark.parametrize("path", sorted(glob.glob(os.path.join(ROOT, "models", "sweeps",
-                                                               "*.yaml"))),
-                         ids=os.path.basename)
-def test_example_sweeps(path, tmp_path):
+# The variants run by default of the slower examples (0.5-1 s each): the first, the one
+# of the pinned largest value and the last (the grid's opposite corners); the whole grid
+# with `pytest -m slow` (18 variants each, 10 and 13 s under load without numba).
+SWEEP_CORNERS = {
+    "portal_crane_luffing_time.yaml": [0, 17],          # t_k 15 s, rope 8 m: the largest
+    "hammerhead_load_chart.yaml": [0, 13, 17],          # 40 m, 2250 kg, 25 m: the largest
+}
+SWEEP_EXAMPLES = sorted(glob.glob(os.path.join(ROOT, "models", "sweeps", "*.yaml")))
+
+
+def _example_sweep(path, tmp_path, corners):
     from dataclasses import replace
     sweep = replace(load_sweep(path), output=str(tmp_path / "t.h5"))
+    if corners is not None:
+        sweep = replace(sweep, variants=sweep.variants[corners])
     done = run_sweep(sweep, workers=0)
     assert len(done) == len(sweep.variants)
     assert all(r["status"] == "ok" for r in done.values())
     output, top = PINNED_SWEEPS[os.path.basename(path)]
     k = sweep.outputs.index(output)
     assert max(r["outputs"][k] for r in done.values()) == pytest.approx(top, rel=1e-6)
+    return sweep, done
+
+
+@pytest.mark.parametrize("path", SWEEP_EXAMPLES, ids=os.path.basename)
+def test_example_sweeps(path, tmp_path):
+    """Each example sweep runs (the corners of the two slow ones' grids, every variant of
+    the others) and its largest pinned output is the pinned one; the luffing sweep's
+    optimum energy falls as 1/t_k^2 (eq. 16, T = S^2 / (2 t_k^2)) between its corners,
+    whatever the rope."""
+    sweep, done = _example_sweep(path, tmp_path, SWEEP_CORNERS.get(os.path.basename(path)))
+    if os.path.basename(path) == "portal_crane_luffing_time.yaml":
+        (t0, _), (t1, _) = sweep.variants
+        assert done[0]["outputs"][0] / done[1]["outputs"][0] == pytest.approx(
+            (t1 / t0) ** 2, rel=1e-9)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", sorted(SWEEP_CORNERS), ids=str)
+def test_example_sweeps_every_variant(path, tmp_path):
+    """The whole grid of the slow example sweeps (test_example_sweeps runs its corners)."""
+    _example_sweep(os.path.join(ROOT, "models", "sweeps", path), tmp_path, None)
 
 
 def test_a_sweep_stopped_before_any_result_writes_an_empty_table(tmp_path):

@@ -1,6 +1,7 @@
 """Sweep throughput: variants per second of a realistic crane, serial and parallel, and
 what reusing the structure's work (cranefe.assembly.reuse) saves per variant."""
 
+import contextlib
 import os
 import tempfile
 import time
@@ -25,7 +26,8 @@ def _base(folder, effects):
     return path
 
 
-def _spec(folder, base, n_ea, name):
+def _spec(folder, base, n_ea, name, grid=(4, 3)):
+    """A sweep of n_ea x grid[0] hook masses x grid[1] spring stiffnesses."""
     path = os.path.join(folder, f"{name}.yaml")
     with open(path, "w") as fh:
         fh.write(f"""cranefe: 1
@@ -33,16 +35,17 @@ sweep: hammerhead tower crane, {name}
 base: {base}
 parameters:
   ropes.hoist_rope.EA: {{range: [1.0e7, 3.0e7], count: {n_ea}}}
-  masses.HOOK: {{range: [2000, 12000], count: 4}}
-  springs.1.stiffness: {{range: [2.0e8, 6.0e8], count: 3}}
+  masses.HOOK: {{range: [2000, 12000], count: {grid[0]}}}
+  springs.1.stiffness: {{range: [2.0e8, 6.0e8], count: {grid[1]}}}
 outputs: [frequency_hz.1, frequency_hz.3, frequency_hz.6]
 output: {name}.h5
 """)
     return path
 
 
-def _throughput(folder, crane, base, n_ea):
-    """(crane, engine, variants, seconds) of each engine on the same sweep."""
+def _throughput(folder, crane, base, n_ea, grid, client):
+    """(crane, engine, variants, seconds) of each engine on the same sweep; Dask on
+    `client` (None: not installed)."""
     from ..sweeps.engine import run_sweep
     from ..sweeps.evaluate import REUSE
     from ..sweeps.spec import load_sweep
@@ -53,24 +56,33 @@ def _throughput(folder, crane, base, n_ea):
                ("1 worker process", dict(workers=1)),
                ("2 worker processes", dict(workers=2))]
     for k, (label, kw) in enumerate(engines):
-        sweep = load_sweep(_spec(folder, base, n_ea, f"s{k}"))
+        sweep = load_sweep(_spec(folder, base, n_ea, f"s{k}", grid))
         REUSE.clear()                        # as a fresh process starts, for the serial loop
         t0 = time.perf_counter()
         done = run_sweep(sweep, **kw)
         rows.append((crane, label, len(done), time.perf_counter() - t0))
+    if client is None:
+        return rows
+    sweep = load_sweep(_spec(folder, base, n_ea, "dask", grid))
+    t0 = time.perf_counter()
+    done = run_sweep(sweep, scheduler=client)
+    rows.append((crane, "Dask LocalCluster, 2 workers", len(done), time.perf_counter() - t0))
+    return rows
+
+
+@contextlib.contextmanager
+def _dask_client():
+    """One Dask LocalCluster (2 workers) for both cranes (its start, ~2.5 s, outside the
+    timings), or None when distributed is not installed."""
     try:
         import distributed
     except ImportError:
-        return rows
+        yield None
+        return
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
-        sweep = load_sweep(_spec(folder, base, n_ea, "dask"))
-        t0 = time.perf_counter()
-        done = run_sweep(sweep, scheduler=client)
-        rows.append((crane, "Dask LocalCluster, 2 workers", len(done),
-                     time.perf_counter() - t0))
-    return rows
+        yield client
 
 
 def _stages(crane, base, n):
@@ -132,13 +144,14 @@ def _stages(crane, base, n):
 
 def run(outdir, quick=False):
     rows, stages = [], []
-    with tempfile.TemporaryDirectory() as tmp:
+    with tempfile.TemporaryDirectory() as tmp, _dask_client() as client:
         for k, (crane, effects) in enumerate(CRANES):
             folder = os.path.join(tmp, str(k))       # its own tables, nothing to resume
             os.makedirs(folder)
             base = _base(folder, effects)
             n_ea = (2 if quick else 80) if not effects else (1 if quick else 20)
-            rows += _throughput(folder, crane, base, n_ea)       # n_ea x 4 x 3 variants
+            grid = (2, 2) if quick else (4, 3)      # quick: 8 and 4 variants per engine
+            rows += _throughput(folder, crane, base, n_ea, grid, client)  # n_ea x grid
             stages += _stages(crane, base, 3 if quick else 40)
     table = []
     for crane, label, n, t in rows:
