@@ -33,7 +33,7 @@ import math
 
 import numpy as np
 import pytest
-from test_mutation_kills_integrate import DROP2, TROLLEY, _scene
+from test_mutation_kills_integrate import DROP2, ROPE, TROLLEY, _scene
 from test_mutation_kills_integrate_loop import FREE, FREE_INITIAL, _failing
 from test_mutation_kills_lean import CASES, TAG, TRAVEL, TWO_DRUMS, _drives, _scene_mech
 from test_mutation_kills_lean_loop import _same_run
@@ -438,3 +438,26 @@ def test_a_winch_paying_out_faster_than_free_fall(looped):
     ev = [(t, w) for t, w in res.events if w.startswith("rope")]
     assert [w for _, w in ev][:2] == ["rope r slack", "rope r taut"], ev
     _same_run(simulate(model, fast=False), res)
+
+
+def test_a_run_starting_in_motion_interpolates_its_first_step(looped):
+    """A 200-kg load on its 5-m rope (EA 4e5 N, sway off) leaves its static place moving
+    down at 0.5 m/s: the rope's force rises at once at the rate EA/L L' = 8e4 N/m x
+    0.5 m/s. The first step (1e-3 of the 0.1-s run) holds one output time, 8e-5 s: its
+    force is the cubic Hermite interpolant from the start's force m g and its full rate
+    (loop.run's first rate; a zero rate puts it 0.13 N low). By hand S = EA ln(L / L0),
+    L = 5 + 0.5 t (the load's acceleration is zero at the static place; its jerk moves L
+    by c L' t^3 / (6 m) = 2e-9 m), L0 = 5 exp(-m g / EA): to 1e-4 N (the neglected
+    terms, 1e-5 N); the numpy loop step for step."""
+    m, EA = 200.0, 4.0e5
+    model = _scene("moving", ROPE, "  duration: 0.1\n  output_step: 8.0e-5\n", "{sway: false}")
+    init = {"q": np.array([5.0]), "v": np.array([-0.5])}
+    res = simulate(model, initial=init)
+    assert len(looped) == 1
+    t = res.times[1]
+    assert t == pytest.approx(8e-5, rel=1e-12)
+    assert res.rope_force[0, 0] == pytest.approx(m * G, rel=1e-12)
+    L0 = 5.0 * math.exp(-m * G / EA)
+    assert res.rope_force[1, 0] == pytest.approx(EA * math.log((5.0 + 0.5 * t) / L0),
+                                                 rel=0, abs=1e-4)
+    _same_run(simulate(model, initial=init, fast=False), res)
