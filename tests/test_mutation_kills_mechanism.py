@@ -1289,3 +1289,58 @@ def test_hook_and_sling_dashpots_take_their_modes():
         0.1 * cs * strain_s[0] ** 2 / (4 * np.pi * w[0] * w[1])
     assert zeta == pytest.approx(hand, rel=1e-10)
     assert 0.95 * 0.2 / (4 * np.pi) < zeta < 0.2 / (4 * np.pi)
+
+
+def _pick(K, M, R):
+    """The linear core's rule written out: the modes of (K, M) from the symmetric
+    problem L^-1 K L^-T y = w^2 y (M = L L^T; phi = L^-T y, mass-normalised), each row's
+    w of max (r phi)^2 / w^2."""
+    L = np.linalg.cholesky(M)
+    A = np.linalg.solve(L, np.linalg.solve(L, K).T)
+    lam, y = np.linalg.eigh(A)
+    E = R @ np.linalg.solve(L.T, y)
+    return np.sqrt(lam[np.argmax(E * E / lam, axis=1)])
+
+
+def test_two_torque_drums_and_two_springs_pick_their_modes_by_hand():
+    """A guided load (sway off, height z) on two vertical ropes, each from its own torque
+    drum (coordinates theta_1, theta_2; J_1 = 0.5 kg m^2, light, J_2 = 40), and two
+    vertical springs to the ground below it: at rest K = sum c r r^T + sum k s s^T with
+    the rows r_1 = (-1, R_1, 0), r_2 = (-1, 0, R_2) (L = top - z, the drum hauls R theta
+    in), s = (1, 0, 0), M = diag(m, J_1, J_2); each element's w0 picked from those modes by
+    hand, and the static state's C = sum b r r^T (b = psi c / (2 pi w0), the spring's
+    psi k / (2 pi w0)) on every coordinate: the drums' columns where they belong."""
+    m, R1, R2, J1, J2 = 2000.0, 0.3, 0.5, 0.5, 40.0
+    c1, c2, k, k2 = 4.0e6 / 10, 6.0e6 / 12, 2.0e5, 1.0e5
+    text = ("cranefe: 1\nname: two drums\nplane: xz\nnodes:\n  A: [0, 0, 10]\n"
+            "  B: [0, 0, 12]\n  H: [0, 0, 0]\n  F: [0, 0, -5]\n  E: [0, 0, -8]\n"
+            "ground: [A, B, F, E]\n"
+            "masses: {H: 2000}\ndrums:\n  d1: {node: A, radius: 0.3, inertia: 0.5}\n"
+            "  d2: {node: B, radius: 0.5, inertia: 40}\nropes:\n"
+            "  r1: {EA: 4.0e6, psi: 0.2, path: [d1, H]}\n"
+            "  r2: {EA: 6.0e6, psi: 0.3, path: [d2, H]}\n"
+            "springs:\n  - {name: s, type: axial, nodes: [H, F], stiffness: 2.0e5, psi: 0.1}\n"
+            "  - {name: s2, type: axial, nodes: [H, E], stiffness: 1.0e5, psi: 0.05}\n")
+    mech = _scene_mech(text, "  duration: 1\n  drives:\n    t1: {drum: d1, torque: 1000}\n"
+                       "    t2: {drum: d2, torque: 2000}\n", "{sway: false, damping: exact}")
+    assert mech.n == 3 and len(mech.qdrums) == 2
+    rows = np.array([[-1.0, R1, 0.0], [-1.0, 0.0, R2], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+    stiff = np.array([c1, c2, k, k2])
+    K = (rows.T * stiff) @ rows
+    M = np.diag([m, J1, J2])
+    w0 = _pick(K, M, rows)
+    np.testing.assert_allclose(mech.dashpot_w0, w0, rtol=1e-9)
+    assert len(set(np.round(w0, 6))) >= 2                 # the picks differ
+    b = np.array([0.2, 0.3, 0.1, 0.05]) * stiff / (2 * np.pi * w0)
+    ev = mech.evaluate(0.0, mech.q0, np.zeros(3), mech.taut0)
+    C = sum(bi * np.outer(r, r) for bi, r in zip(b, rows))
+    np.testing.assert_allclose(ev.C, C, rtol=1e-9, atol=1e-12 * np.abs(C).max())
+
+
+def test_the_pick_is_at_rest_before_the_drives_move():
+    """The trolley runs from t = 0: the modes are those of the static state (rope
+    vertical: the hoisting mode w0 = sqrt(c / m), c = EA / 10 m, decoupled from the
+    pendulum), not of the pose a second later (the load 0.5 m behind its trolley)."""
+    mech = _scene_mech(TROLLEY.replace("MASS", "1000").replace("EAVAL", "1.0e7"),
+                       TROLLEY_DRIVE, "{damping: exact}")
+    np.testing.assert_allclose(mech.dashpot_w0, [np.sqrt(1.0e7 / 10 / 1000)], rtol=1e-12)

@@ -1149,14 +1149,15 @@ class Mechanism:
         the frequency of the mode that stores the largest share of its strain energy,
         (r phi_j)^2 / w_j^2, at the static state, as the linear core's transient damping
         picks it (analysis/damping/element.py, element_frequencies): the modes of the
-        tangent K and the mass matrix at rest (every rope taut, massless coordinates
-        condensed, rigid modes left out); an element no mode strains gets the lowest
-        frequency. A rope's dashpot is then b = psi c / (2 pi w0 sqrt(c / c0)) =
+        tangent K and the mass matrix at rest (every rope taut, rigid modes left out;
+        massless blocks are refused with damping); an element no mode strains gets the
+        lowest frequency. A rope's dashpot is then b = psi c / (2 pi w0 sqrt(c / c0)) =
         beta sqrt(c) at its current stiffness c = EA/L (c0 at rest): a load on one rope
         keeps zeta = psi / (4 pi) at every rope length (w = sqrt(n^2 c / m)); a spring's
         is psi k / (2 pi w0)."""
         nr, nsp = len(self.ropes), len(self.sp_k)
         self.beta, self.sp_bd = np.zeros(nr), np.zeros(nsp)
+        self.dashpot_w0 = np.full(nr + nsp, np.inf)          # no dashpots
         if not self.damped or not nr + nsp:
             return
         n, nx = self.n, self.nx
@@ -1173,19 +1174,15 @@ class Mechanism:
         M = np.diag(np.asarray(self.M, float))
         if self.nJ:
             M[self.jb, self.jb] = ev.MJ
-        # massless coordinates (blocks) follow the others statically: K condensed
-        z = np.diag(M) <= 0
-        z[self.jb] = False
-        m = ~z
-        X = np.eye(n)[:, m]
-        if z.any():
-            X[z] = -np.linalg.lstsq(K[np.ix_(z, z)], K[np.ix_(z, m)], rcond=None)[0]
-        lam, phi = eigh(X.T @ K @ X, M[np.ix_(m, m)])
+        if (np.diag(M) <= 0).any():      # massless blocks with damping are refused earlier
+            raise AnalysisError("damping: a coordinate without mass has no modes to pick "
+                                "the dashpots' frequencies from")
+        lam, phi = eigh(K, M)
         ok = lam > 1e-10 * max(lam.max(initial=0.0), 1e-300)
         if not ok.any():
             return
         lam = lam[ok]
-        E = R @ (X @ phi[:, ok])
+        E = R @ phi[:, ok]
         w0 = np.sqrt(lam[np.argmax(E * E / lam, axis=1)])   # all zero: the lowest
         c0 = self.EA / ev.L
         self.beta = self.psi * np.sqrt(c0) / (2 * np.pi * w0[:nr])
