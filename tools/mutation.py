@@ -356,6 +356,14 @@ PRESETS = {
                         "tests/test_loads.py::test_phi5_of_a_luffing_hinge"]),
     # operation/lean.py: Lean (the integrator's view of a mechanism) by hand and against
     # Mechanism on 14 small scenes x sway/damping (every branch), Generic (~5 s CPU)
+    # operation/results.py: the Recorder (energy terms, Hermite peaks and samples between
+    # steps) through the numpy loop's runs: the loop configurations step for step against
+    # the numpy loop, the integrator's hand values, and drive torques sampled inside
+    # steps (a torque table, a geared motor) by hand
+    "results": ("cranefe/analysis/operation/results.py",
+                ["tests/test_mutation_kills_loop_configs.py",
+                 "tests/test_mutation_kills_integrate.py",
+                 "tests/test_mutation_kills_results.py"]),
     "lean": ("cranefe/analysis/operation/lean.py",
              ["tests/test_mutation_kills_lean.py"]),
     # operation/fast.py (numba step; this tool runs it with numba's JIT off and the kernels
