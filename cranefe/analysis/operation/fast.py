@@ -38,8 +38,6 @@ try:                                     # optional: pip install 'cranefe[fast]'
 except ImportError:                      # pragma: no cover - depends on the install
     numba = None
 
-TWO_PI = 2.0 * np.pi
-
 
 def available():
     """True when numba is installed (the compiled step can be used)."""
