@@ -49,7 +49,8 @@ G = 9.81
 REL = 1e-8
 # the loop's functions that numba compiles (their Python originals as `py_func`)
 JITTED = ("_motion", "_kin", "_trial", "_powers", "_energy", "_hermite_max1",
-          "_force_rate", "_accept", "_stretch_k", "_sign", "_locate", "_run")
+          "_hermite_bound", "_force_rate", "_accept", "_stretch_k", "_sign", "_locate",
+          "_run")
 
 
 def _drop2(duration, swap=False):

@@ -17,6 +17,7 @@ is the Hermite interpolant's; only the law is checked here).
 """
 
 import numpy as np
+import pytest
 from test_mutation_kills_integrate import _scene
 from test_mutation_kills_integrate_events import WINCH2
 
@@ -45,3 +46,30 @@ def test_drive_torques_sampled_inside_steps_follow_the_drives_laws():
     assert omega[-1] > 1.0                            # the motor has run up
     np.testing.assert_allclose(res.drive_torque[:, 1],
                                20 * 120 * (1 - 20 * omega / 157), rtol=1e-12)
+
+
+@pytest.mark.parametrize("S0, S1, m0, m1", [
+    (0.0, -1.0, 1.0, 1.0),          # rises, falls below S1's level, rises: m0, m1 > 0
+    (0.0, 1.0, -1.0, -1.0),         # falls, rises above S1, falls: m0, m1 < 0
+    (1.0, 1.2, 2.0, -3.0),          # one interior maximum: m0 > 0 > m1
+    (1.0, 0.5, -0.2, 0.1),          # m0 <= 0 <= m1: no interior maximum, S0 is
+    (2.0, 2.0, 0.0, 0.0),           # constant
+    (0.0, 0.0, 1.0, 1.0),           # A = 6 (S0 - S1) + 3 (m0 + m1) != 0, B = -6
+    (0.0, -0.5, 0.25, 0.5),         # A = 0: p' linear, one root
+])
+def test_the_force_peak_inside_a_step_against_the_sampled_cubic(S0, S1, m0, m1):
+    """_hermite_max1's largest value of the force's cubic over a step (and where) against
+    the cubic sampled at 2e5 + 1 points (its own error: the curvature times (5e-6)^2/2,
+    below 1e-9 here); hermite_bound is never below it. The first case was missed before
+    (the search looked inside a step only when m0 > 0 > m1): 0.0443 at s = 0.092."""
+    from cranefe.analysis.operation.results import _hermite_max1, hermite_bound
+    s = np.linspace(0.0, 1.0, 200001)
+    p = (2 * s**3 - 3 * s**2 + 1) * S0 + (s**3 - 2 * s**2 + s) * m0 \
+        + (-2 * s**3 + 3 * s**2) * S1 + (s**3 - s**2) * m1
+    best, where = _hermite_max1(S0, S1, m0, m1)
+    assert best == pytest.approx(p.max(), abs=1e-9)
+    if p.max() > max(S0, S1) + 1e-6:
+        assert where == pytest.approx(s[np.argmax(p)], abs=1e-4)
+    assert hermite_bound(S0, S1, m0, m1) >= best
+    if (S0, S1, m0, m1) == (0.0, -1.0, 1.0, 1.0):
+        assert best == pytest.approx(0.0443, abs=1e-4) and 0.09 < where < 0.095

@@ -292,6 +292,7 @@ def _energy(out, kt, q, v, taut, fd, M):
 
 # the Hermite peak of one rope (results._hermite_max1 derives it), compiled
 _hermite_max1 = _jit(_results._hermite_max1)
+_hermite_bound = _jit(_results.hermite_bound)
 
 
 @_jit
@@ -323,7 +324,7 @@ def _accept(t0, q0, v0, t1, q1, v1, out1, kt1, qi, vi, taut, fs, ist, F0, r0, pe
     F1, r1 = _force_rate(out1, EA, taut)
     for k in range(F1.shape[0]):
         a, b, m0, m1 = F0[k], F1[k], h * r0[k], h * r1[k]
-        if a > peak[k] or b > peak[k] or (m0 > 0 and m1 < 0):
+        if _hermite_bound(a, b, m0, m1) > peak[k]:
             best, where = _hermite_max1(a, b, m0, m1)
             if best > peak[k]:
                 peak[k], peak_t[k] = best, t0 + where * h

@@ -124,46 +124,48 @@ class OperationResult:
         }
 
 
-def hermite_max(S0, S1, d0, d1, h):
-    """Largest value of the cubic Hermite interpolants through (S0, d0), (S1, d1) over a
-    step h, and where (fraction of h)."""
-    best, where = [], []
-    for a, b, m0, m1 in zip(np.ravel(S0).tolist(), np.ravel(S1).tolist(),
-                            np.ravel(d0).tolist(), np.ravel(d1).tolist()):
-        v, w = _hermite_max1(a, b, h * m0, h * m1)
-        best.append(v)
-        where.append(w)
-    return np.array(best), np.array(where)
-
-
 def _hermite_max1(S0, S1, m0, m1):
-    """hermite_max of one rope in plain floats (m0, m1: h times the end rates).
+    """The largest value of one rope's force over a step and where (fraction of the
+    step), in plain floats (m0, m1: the step h times the end rates).
 
     p(s) = (2s^3-3s^2+1) S0 + (s^3-2s^2+s) m0 + (-2s^3+3s^2) S1 + (s^3-s^2) m1 has
-    p'(s) = A s^2 + B s + C with C = p'(0) = m0 and A + B + C = p'(1) = m1: an interior
-    maximum only when m0 > 0 > m1, and then exactly one root of p' in (0, 1) (a
-    quadratic changing sign once there), taken by the cancellation-free formula."""
+    p'(s) = A s^2 + B s + C with C = p'(0) = m0 and A + B + C = p'(1) = m1; its real
+    roots in (0, 1) (the cancellation-free formula) are the candidates beside the ends:
+    an interior maximum when m0 > 0 > m1, and also when m0 and m1 have the same sign
+    (the force turning twice in the step: S0 = 0, S1 = -1, m0 = m1 = 1 peaks at 0.0443,
+    s = 0.092); none when m0 <= 0 <= m1."""
     if S1 >= S0:
         best, where = S1, 1.0
     else:
         best, where = S0, 0.0
-    if m0 > 0 and m1 < 0:
-        A = 6 * (S0 - S1) + 3 * (m0 + m1)
-        B = -6 * (S0 - S1) - 4 * m0 - 2 * m1
-        C = m0
-        if A != 0:
-            disc = max(B * B - 4 * A * C, 0.0)
+    A = 6 * (S0 - S1) + 3 * (m0 + m1)
+    B = -6 * (S0 - S1) - 4 * m0 - 2 * m1
+    C = m0
+    r1 = r2 = -1.0                          # -1: outside (0, 1)
+    if A != 0:
+        disc = B * B - 4 * A * C
+        if disc >= 0:
             qq = -0.5 * (B + math.copysign(math.sqrt(disc), B))
-            cands = (qq / A, C / qq if qq != 0 else -1.0)
-        else:
-            cands = (-C / B, -1.0)          # (one root; -1 is outside (0, 1))
-        for s in cands:                     # (a plain tuple: loop.py compiles this)
-            if 0 < s < 1:
-                val = (2 * s**3 - 3 * s**2 + 1) * S0 + (s**3 - 2 * s**2 + s) * m0 \
-                    + (-2 * s**3 + 3 * s**2) * S1 + (s**3 - s**2) * m1
-                if val > best:
-                    best, where = val, s
+            r1 = qq / A
+            if qq != 0:
+                r2 = C / qq
+    elif B != 0:
+        r1 = -C / B
+    for s in (r1, r2):                      # (a plain tuple: loop.py compiles this)
+        if 0 < s < 1:
+            val = (2 * s**3 - 3 * s**2 + 1) * S0 + (s**3 - 2 * s**2 + s) * m0 \
+                + (-2 * s**3 + 3 * s**2) * S1 + (s**3 - s**2) * m1
+            if val > best:
+                best, where = val, s
     return best, where
+
+
+def hermite_bound(S0, S1, m0, m1):
+    """An upper bound of the cubic of `_hermite_max1` over the step: the Hermite weights
+    of S0, S1 are >= 0 and sum to 1, that of m0 lies in [0, 4/27], that of m1 in
+    [-4/27, 0] (their extremes at s = 1/3, 2/3). A step whose bound stays below the
+    running peak cannot raise it."""
+    return max(S0, S1) + (4.0 / 27.0) * (max(m0, 0.0) + max(-m1, 0.0))
 
 
 class Recorder:
@@ -223,7 +225,7 @@ class Recorder:
         peak, peak_t = self.peak, self.peak_t
         for k, (a, b, m0, m1) in enumerate(zip(F0, F1, (h * r0).tolist(),
                                                (h * r1).tolist())):
-            if a > peak[k] or b > peak[k] or (m0 > 0 and m1 < 0):
+            if hermite_bound(a, b, m0, m1) > peak[k]:
                 best, where = _hermite_max1(a, b, m0, m1)
                 if best > peak[k]:
                     peak[k], peak_t[k] = best, t0 + where * h
