@@ -184,7 +184,7 @@ def test_forces_equal_lean(case, eff):
     mech = _mech(case, eff)
     lean = Lean(mech)
     fl = fast.FastLean(mech)
-    Dm, Af, extra, EA, psi, invM, Fg, D, falls, span_rope = fl._c
+    Dm, Af, extra, EA, beta, Fg, D, falls, span_rope = fl._c
     rng = np.random.default_rng(5)
     n = mech.n
     for t in (0.5, 1.5, 3.7):
@@ -194,7 +194,7 @@ def test_forces_equal_lean(case, eff):
             for tangent in (True, False):
                 K, C = np.full((n, n), 7.0), np.full((n, n), 7.0)
                 out = fast._forces(q, v, Dm, kt[2], np.zeros(0) if kt[3] is None else kt[3],
-                                   Af, extra, kt[7], EA, kt[8], taut, psi, invM, Fg, D,
+                                   Af, extra, kt[7], EA, kt[8], taut, beta, Fg, D,
                                    falls, span_rope, bool(lean.damped), tangent, K, C)
                 F, Gm, l, e, L, lam, loglam, S, Sd, edot, cL = out
                 s = np.abs(a.S).max() + np.abs(a.Sd).max() + np.abs(mech.Fg).max()

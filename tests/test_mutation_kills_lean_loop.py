@@ -136,10 +136,10 @@ def test_kinematics_powers_and_energy_equal_lean(case, eff, monkeypatch):
             v = rng.uniform(-1, 1, mech.n)
             ev = lean.evaluate(t, q, v, taut, ref)
             lean.powers(ev)
-            Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope, damped = fd[:11]
+            Dm, Af, extra, EA, beta, Fg, D, falls, span_rope, damped = fd[:10]
             K0 = np.zeros((0, 0))
             out = fast._forces(q, v, Dm, kt[2], kt[3], Af, extra, kt[7], EA, kt[8], taut,
-                               beta, invM, Fg, D, falls, span_rope, damped, False, K0, K0)
+                               beta, Fg, D, falls, span_rope, damped, False, K0, K0)
             P = max(abs(ev.P_drive), abs(ev.P_diss), abs(ev.P_wound), 1.0)
             np.testing.assert_allclose(loop._powers(out, kt, taut, fd),
                                        [ev.P_drive, ev.P_diss, ev.P_wound], rtol=0,

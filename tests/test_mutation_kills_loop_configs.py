@@ -113,6 +113,17 @@ TAG_AWAY = TAG.replace("B: [6, 0, 0]", "B: [-6, 0, 0]").replace(
     "tag: {EA: 1.0e5,", "tag: {EA: 1.0e4,")
 
 
+def _tag_away(damping, looped):
+    """TAG_AWAY's 2 m trolley move without sway, compiled: (model, result, the load's
+    positions, the tag's length from its anchor at x = -6 m)."""
+    mech = _scene_mech(TAG_AWAY, _drives(TRAVEL), f"{{sway: false, damping: {damping}}}")
+    model = _cut(mech.model, 3.5, 1e-7, 0.1)
+    res = simulate(model)
+    assert len(looped) == 1
+    H = res.mass_position[:, 0]
+    return model, res, H, np.hypot(H[:, 0] + 6.0, H[:, 2])
+
+
 def test_tag_line_stretched_without_sway(looped):
     """The tag line taut through the move while the guided load follows the trolley:
     its force at the output times (cubic Hermite between steps, from the forces and
@@ -121,12 +132,7 @@ def test_tag_line_stretched_without_sway(looped):
     error, h^4 |S''''| / 384 with h <= 70 ms; a rate without the guided load's velocity
     is off by ~EA/L x 1 m/s x h / 8 = 15 N); the numpy loop step for step."""
     assert TAG_AWAY != TAG
-    mech = _scene_mech(TAG_AWAY, _drives(TRAVEL), "{sway: false, damping: none}")
-    model = _cut(mech.model, 3.5, 1e-7, 0.1)
-    res = simulate(model)
-    assert len(looped) == 1
-    H = res.mass_position[:, 0]
-    L = np.hypot(H[:, 0] + 6.0, H[:, 2])
+    model, res, H, L = _tag_away("none", looped)
     np.testing.assert_allclose(H[:, 0], res.drive_position[:, 0], rtol=0, atol=1e-12)
     tag = res.rope_force[:, 1]
     np.testing.assert_allclose(tag, 1e4 * np.log(L / 6.0), rtol=0, atol=0.05)
@@ -144,16 +150,11 @@ def test_a_damped_tag_line_that_no_coordinate_stretches(looped):
     level, so the guided load's height hardly stretches it (its row dL/dz = z / L ~ 1e-15)
     while the trolley does, at L' = (x + 6) / L x'. Its dashpot b = psi c / (2 pi w0
     sqrt(c / c0)) takes w0 from the one mode at rest (no mode strains the level tag: the
-    lowest), the hoisting mode w0^2 = EA_h / (10 m) / 1000 kg, and c0 = EA / 6 m. The dashpot's force b L' (1.5 N at
-    most) is the reported force less EA ln(L / 6 m), to 0.03 N (the output's
-    interpolation between steps: 0.010 N measured). The tag's own frequency,
-    c z^2 / (L^2 m) -> 0, made it 4.4e9 N (found 2026-11-24)."""
-    mech = _scene_mech(TAG_AWAY, _drives(TRAVEL), "{sway: false, damping: exact}")
-    model = _cut(mech.model, 3.5, 1e-7, 0.1)
-    res = simulate(model)
-    assert len(looped) == 1
-    H = res.mass_position[:, 0]
-    L = np.hypot(H[:, 0] + 6.0, H[:, 2])
+    lowest), the hoisting mode w0^2 = EA_h / (10 m) / 1000 kg, and c0 = EA / 6 m. The
+    dashpot's force b L' (1.5 N at most) is the reported force less EA ln(L / 6 m), to
+    0.03 N (the output's interpolation between steps: 0.010 N measured). The tag's own
+    frequency, c z^2 / (L^2 m) -> 0, made it 4.4e9 N (found 2026-11-24)."""
+    model, res, H, L = _tag_away("exact", looped)
     Ld = (H[:, 0] + 6.0) / L * res.drive_speed[:, 0]
     b = 0.2 * 1e4 / np.sqrt(6.0 * L) / (2 * np.pi * math.sqrt(1e7 / 10 / 1000))
     dash = res.rope_force[:, 1] - 1e4 * np.log(L / 6.0)

@@ -1221,7 +1221,7 @@ def test_two_damped_ropes_on_a_guided_load_damp_it_at_psi_over_4pi():
     """A guided load (sway off: its height z the one coordinate) on a vertical rope and a
     slanted one of another stiffness, at rest: the one mode has w0^2 = (c_a g_a^2 +
     c_b g_b^2 + S_b (1 - g_b^2) / L_b) / m (g = dL/dz, c = EA / L; the static forces
-    S = c g u, u = m g_z / sum c g^2; the slanted rope's geometric stiffness). Both
+    S = c g u, u = -m g / sum c g^2; the slanted rope's geometric stiffness). Both
     dashpots take it (b = psi c / (2 pi w0)), so C = psi / (2 pi w0) sum c g^2 and the
     damping ratio C / (2 m w0) is psi / (4 pi) times the ropes' share of the stiffness
     (0.9999 here), as for one rope. Each rope's own frequency (c g^2 / m) gave C 38 %

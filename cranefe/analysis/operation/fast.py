@@ -49,7 +49,7 @@ def _jit(f):
 
 
 @_jit
-def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, beta, invM, Fg,
+def _forces(q, v, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, beta, Fg,
             D, falls, span_rope, damped, tangent, K, C):
     """Lean.evaluate's forces (and with `tangent` K, C in place) at (q, v).
 
@@ -181,7 +181,7 @@ def _solve(LU, piv, b):
 
 @_jit
 def _step(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega, taut,
-          beta, invM, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max,
+          beta, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max,
           fscale, sfloor, tol):
     """One trapezoidal step (Stepper.step with Lean.evaluate) and its error.
 
@@ -206,7 +206,7 @@ def _step(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega,
     for _ in range(newton_max):
         v1 = c2 * (q1 - q0) - v0
         a1 = c1 * (q1 - qb) - a0
-        out = _forces(q1, v1, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, beta, invM,
+        out = _forces(q1, v1, Dm, dk, dvk, Af, extra, L0, EA, romega, taut, beta,
                       Fg, D, falls, span_rope, damped, fresh, K, C)
         F = out[0]
         its += 1
@@ -257,14 +257,14 @@ def _step(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega,
 
 @_jit
 def _step_packed(q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega,
-                 taut, beta, invM, Fg, D, falls, span_rope, damped, M, newton_tol,
+                 taut, beta, Fg, D, falls, span_rope, damped, M, newton_tol,
                  newton_max, fscale, sfloor, tol):
     """`_step` with its arrays packed into one (a returned array costs a boxing each):
     (status, err, iterations, tangents, [q1 v1 a1 q v F | G | l | e | L lam loglam S
     Sd edot cL])."""
     st, q1, v1, a1, err, its, tg, out, qi, vi = _step(
         q0, v0, a0, h, jerk, has_jerk, Dm, dk, dvk, Af, extra, L0, EA, romega, taut,
-        beta, invM, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max, fscale,
+        beta, Fg, D, falls, span_rope, damped, M, newton_tol, newton_max, fscale,
         sfloor, tol)
     F, G, l, e, L, lam, loglam, S, Sd, edot, cL = out
     n, nr, ns = q0.shape[0], L.shape[0], l.shape[0]
@@ -283,7 +283,7 @@ class FastLean(Lean):
         super().__init__(mech)
         m = mech
         self._c = (self.Dm, self.Af, m.extra.astype(float), m.EA.astype(float),
-                   m.beta.astype(float), np.ascontiguousarray(m.invM_x, float),
+                   m.beta.astype(float),
                    np.ascontiguousarray(m.Fg, float), np.ascontiguousarray(m.D, float),
                    m.falls.astype(float), np.asarray(m.span_rope, np.int64))
         self._empty = np.zeros(0)
@@ -297,11 +297,11 @@ class FastLean(Lean):
         """-> (status, q1, v1, a1, err, iterations, tangents, ev of the last iterate)."""
         kt = self.kin(t1)
         dk, dvk, L0, romega = kt[2], kt[3], kt[7], kt[8]
-        Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope = self._c
+        Dm, Af, extra, EA, beta, Fg, D, falls, span_rope = self._c
         st, err, its, tg, buf = _step_packed(
             q0, v0, a0, h, self._empty if jerk is None else jerk, jerk is not None,
             Dm, dk, self._empty if dvk is None else dvk, Af, extra, L0, EA, romega,
-            taut, beta, invM, Fg, D, falls, span_rope, bool(self.damped), M,
+            taut, beta, Fg, D, falls, span_rope, bool(self.damped), M,
             newton_tol, newton_max, self._empty if fscale is None else fscale, sfloor,
             tol)
         q1, v1, a1, qi, vi, F, G, l, e, L, lam, loglam, S, Sd, edot, cL = (

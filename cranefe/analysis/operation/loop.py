@@ -240,17 +240,17 @@ def _kin(t, kd):
 def _trial(t, q, v, a, h, taut, jerk, has_jerk, kd, fd, M, newton_tol, newton_max,
            fscale, sfloor, tol):
     """fast._step at t + h with the kinematics there."""
-    Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope, damped = fd[:11]
+    Dm, Af, extra, EA, beta, Fg, D, falls, span_rope, damped = fd[:10]
     kt = _kin(t + h, kd)
     return _fast._step(q, v, a, h, jerk, has_jerk, Dm, kt[2], kt[3], Af, extra, kt[7],
-                       EA, kt[8], taut, beta, invM, Fg, D, falls, span_rope, damped, M,
+                       EA, kt[8], taut, beta, Fg, D, falls, span_rope, damped, M,
                        newton_tol, newton_max, fscale, sfloor, tol) + (kt,)
 
 
 @_jit
 def _powers(out, kt, taut, fd):
     """Lean.powers -> (P_drive, P_diss, P_wound)."""
-    Af, EA, lam_ref, wound = fd[1], fd[3], fd[11], fd[12]
+    Af, EA, lam_ref, wound = fd[1], fd[3], fd[10], fd[11]
     e, lam, loglam, S, Sd, edot = out[3], out[5], out[6], out[7], out[8], out[9]
     vkin, romega = kt[4], kt[8]
     nr = S.shape[0]
@@ -276,7 +276,7 @@ def _powers(out, kt, taut, fd):
 @_jit
 def _energy(out, kt, q, v, taut, fd, M):
     """Lean.energy -> (T, V_gravity, U_elastic)."""
-    Fg, EA = fd[6], fd[3]
+    Fg, EA = fd[5], fd[3]
     L, S, L0 = out[4], out[7], kt[7]
     T = 0.0
     Vg = 0.0
@@ -502,11 +502,11 @@ def _run(t_stop, T, bps, max_step, hmin, max_steps, newton_tol, newton_max, tol,
                 ev_t[ne], ev_k[ne], ev_s[ne] = t, k, taut[k]
             ist[I_NEV] = ne + 1
             # a, ev = Stepper.accel(t, q, v, taut): the forces with the new taut set
-            Dm, Af, extra, EA, beta, invM, Fgv, D, falls, span_rope, damped = fd[:11]
+            Dm, Af, extra, EA, beta, Fgv, D, falls, span_rope, damped = fd[:10]
             kt = _kin(t, kd)
             K0 = np.zeros((0, 0))
             ev = _fast._forces(q, v, Dm, kt[2], kt[3], Af, extra, kt[7], EA, kt[8], taut,
-                               beta, invM, Fgv, D, falls, span_rope, damped, False, K0, K0)
+                               beta, Fgv, D, falls, span_rope, damped, False, K0, K0)
             for i in range(n):
                 a[i] = ev[0][i] / M[i]
             Fn, rn = _force_rate(ev, EA, taut)
@@ -642,8 +642,7 @@ def prepare(st, spec):
           np.asarray(m.kin_b, np.bool_), pd_k, pd_mot, int(m.nd),
           np.asarray(m.L0_ref, float), np.ascontiguousarray(lean.W, float),
           np.ascontiguousarray(m.Rd, float), np.ascontiguousarray(m.E, float))
-    Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope = lean._c
-    fd = (Dm, Af, extra, EA, beta, invM, Fg, D, falls, span_rope, bool(lean.damped),
+    fd = (*lean._c, bool(lean.damped),
           np.asarray(m.lam_ref, float), bool(lean.wound))
     return kd, fd, dmap
 

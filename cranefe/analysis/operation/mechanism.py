@@ -292,7 +292,6 @@ class Mechanism:
         self.MJ = np.diag(st.M) + self.MJ_rotor
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
                                  self.MJ, self._Mu(), self.J])
-        self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
         self._refuse_joint_springs(model)
 
     def _refuse_joint_springs(self, model):
@@ -589,7 +588,6 @@ class Mechanism:
         self.gear = np.array([model.drums[k].gear_ratio for k in range(nd)])
         self.M = np.concatenate([(self.E.T ** 2) @ np.repeat(self.free_mass, 3),
                                  np.zeros(self.nJ), self._Mu(), self.J])
-        self.invM_x = 1.0 / np.where(self.M[:self.nx] > 0, self.M[:self.nx], np.inf)
 
     # ----------------------------------------------------------------- state at t
     def kinematics(self, t):
